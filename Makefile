@@ -1,0 +1,60 @@
+# stagelight - top-level Makefile.
+#
+#   make            build the common core and every stage (build/NN_name/render)
+#   make test       every test of common/ and of every stage; last line "N passed, N failed"
+#   make sanitize   the same tests built with AddressSanitizer + UBSan (build/sanitize/)
+#   make demo       render the showcase scenes through the stages into out/
+#   make config     what the build found (OpenEXR, tinygltf)
+#   make clean
+# Knobs: REAL=float (single precision, build/float/), CFLAGS=..., WERROR=1,
+# OPENEXR=0|1, TINYGLTF=0|1.  See common/config.mk.
+ROOT := $(abspath .)
+include common/config.mk
+
+STAGES := $(notdir $(wildcard stages/[0-9][0-9]_*))
+LOGS := $(BUILDROOT)test-logs
+
+all: $(STAGES)
+
+common:
+	@$(MAKE) --no-print-directory -C common
+
+# Each stage after the common core, so parallel stage builds never race on it.
+$(STAGES): common
+	@$(MAKE) --no-print-directory -C stages/$@
+
+# Every test program prints its own results; the last line is the sum.
+test: all
+	@mkdir -p $(LOGS)
+	@$(MAKE) --no-print-directory -C tests common 2>&1 | tee $(LOGS)/common.log
+	@for s in $(STAGES); do \
+		$(MAKE) --no-print-directory -C stages/$$s test 2>&1 | tee $(LOGS)/$$s.log; \
+	done
+	@tests/sum-results.sh $(LOGS)/common.log $(foreach s,$(STAGES),$(LOGS)/$(s).log)
+
+sanitize:
+	@$(MAKE) --no-print-directory SANITIZE=1 test
+
+config:
+	@echo "compiler:  $(CC) ($(REAL) precision)"
+	@echo "OpenEXR:   $(if $(filter 1,$(OPENEXR)),yes,no (apt-get install libopenexr-dev))"
+	@echo "tinygltf:  $(if $(filter 1,$(TINYGLTF)),yes,no (apt-get install libtinygltf-dev))"
+
+DEMO_SCENES := scenes/cornell_diffuse_point.scene scenes/cornell_diffuse_area.scene \
+	scenes/cornell_specular_area.scene $(wildcard scenes/showcase*.scene)
+
+demo: all
+	@mkdir -p out
+	@for s in $(STAGES); do \
+		for scene in $(DEMO_SCENES); do \
+			name=$$(basename $$scene .scene); \
+			echo "$$s: $$name"; \
+			$(BUILDROOT)$$s/render -q -o out/$${s}_$$name.png $$scene || exit 1; \
+		done; \
+	done
+	@echo "wrote out/*.png"
+
+clean:
+	rm -rf build
+
+.PHONY: all common test sanitize config demo clean $(STAGES)

@@ -1,0 +1,332 @@
+/*
+ * cli.c - parse the shared command line and a stage's own options.
+ *
+ * ISO C has no getopt (it is POSIX), so this is a small table-driven parser:
+ * "--name value", "--name=value", and the short forms of CONTRACT.md.
+ */
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define STAGELIGHT_VERSION "1.0"
+
+/* The shared options: the same table drives parsing and --help. */
+enum shared_id {
+    ID_OUTPUT,
+    ID_WIDTH,
+    ID_HEIGHT,
+    ID_SPP,
+    ID_THREADS,
+    ID_SEED,
+    ID_STATS,
+    ID_QUIET,
+    ID_STRICT,
+    ID_HELP,
+    ID_VERSION,
+};
+
+struct shared_option {
+    enum shared_id id;
+    char short_name; /* 0: none */
+    const char *name;
+    const char *arg; /* NULL: a flag */
+    const char *help;
+};
+
+static const struct shared_option shared_options[] = {
+    {ID_OUTPUT, 'o', "output", "FILE", ".png (8-bit sRGB), .ppm, .pfm (linear float), .exr"},
+    {ID_WIDTH, 'W', "width", "N", "override the scene's image width (height scales unless -H)"},
+    {ID_HEIGHT, 'H', "height", "N", "override the scene's image height"},
+    {ID_SPP, 's', "spp", "N", "samples per pixel, for stages that sample"},
+    {ID_THREADS, 't', "threads", "N", "threads (default: all cores); the image does not depend on N"},
+    {ID_SEED, 0, "seed", "N", "random seed (default 1); same seed and options, same image"},
+    {ID_STATS, 0, "stats", "FILE", "write the run's statistics as one JSON object"},
+    {ID_QUIET, 'q', "quiet", NULL, "no progress bar"},
+    {ID_STRICT, 0, "strict", NULL, "refuse a scene that needs what this stage does not model"},
+    {ID_HELP, 0, "help", NULL, "print this help"},
+    {ID_VERSION, 0, "version", NULL, "print the version"},
+};
+
+#define N_SHARED ((int)(sizeof shared_options / sizeof shared_options[0]))
+
+static bool
+parse_long(const char *text, long long min, long long max, long long *out)
+{
+    char *end;
+    errno = 0;
+    long long v = strtoll(text, &end, 10);
+    if (end == text || *end != '\0' || errno == ERANGE || v < min || v > max) {
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+static bool
+parse_int_in(const char *name, const char *text, double min, double max, int *out,
+    struct diag *err)
+{
+    long long v;
+    if (!parse_long(text, (long long)min, (long long)max, &v)) {
+        diag_set(err, NULL, 0, 0, "--%s expects a whole number in [%.0f, %.0f], got '%s'", name,
+            min, max, text);
+        return false;
+    }
+    *out = (int)v;
+    return true;
+}
+
+static bool
+parse_real_in(const char *name, const char *text, double min, double max, real *out,
+    struct diag *err)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(text, &end);
+    if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v) || v < min || v > max) {
+        diag_set(err, NULL, 0, 0, "--%s expects a number in [%g, %g], got '%s'", name, min, max,
+            text);
+        return false;
+    }
+    *out = (real)v;
+    return true;
+}
+
+static bool
+parse_pair(const struct option_spec *spec, const char *text, struct diag *err)
+{
+    int *pair = spec->dest;
+    const char *comma = strchr(text, ',');
+    char first[64];
+    size_t len = comma ? (size_t)(comma - text) : 0;
+    if (!comma || len >= sizeof first) {
+        diag_set(err, NULL, 0, 0, "--%s expects %s (two whole numbers), got '%s'", spec->name,
+            spec->arg, text);
+        return false;
+    }
+    memcpy(first, text, len);
+    first[len] = '\0';
+    return parse_int_in(spec->name, first, spec->min, spec->max, &pair[0], err)
+        && parse_int_in(spec->name, comma + 1, spec->min, spec->max, &pair[1], err);
+}
+
+static bool
+parse_choice(const struct option_spec *spec, const char *text, struct diag *err)
+{
+    const char *word = spec->choices;
+    size_t len = strlen(text);
+    for (int index = 0; word && *word; index++) {
+        const char *bar = strchr(word, '|');
+        size_t wlen = bar ? (size_t)(bar - word) : strlen(word);
+        if (wlen == len && strncmp(word, text, len) == 0) {
+            *(int *)spec->dest = index;
+            return true;
+        }
+        word = bar ? bar + 1 : NULL;
+    }
+    diag_set(err, NULL, 0, 0, "--%s expects one of %s, got '%s'", spec->name, spec->choices, text);
+    return false;
+}
+
+static bool
+apply_extra(const struct option_spec *spec, const char *value, struct diag *err)
+{
+    switch (spec->kind) {
+    case OPT_FLAG:
+        *(bool *)spec->dest = true;
+        return true;
+    case OPT_INT:
+        return parse_int_in(spec->name, value, spec->min, spec->max, spec->dest, err);
+    case OPT_REAL:
+        return parse_real_in(spec->name, value, spec->min, spec->max, spec->dest, err);
+    case OPT_INT_PAIR:
+        return parse_pair(spec, value, err);
+    case OPT_CHOICE:
+        return parse_choice(spec, value, err);
+    }
+    return false;
+}
+
+static bool
+apply_shared(enum shared_id id, const char *name, const char *value, struct options *opt,
+    struct diag *err)
+{
+    long long seed;
+    switch (id) {
+    case ID_OUTPUT:
+        opt->output = value;
+        return true;
+    case ID_WIDTH:
+        return parse_int_in(name, value, 1, 16384, &opt->width, err);
+    case ID_HEIGHT:
+        return parse_int_in(name, value, 1, 16384, &opt->height, err);
+    case ID_SPP:
+        return parse_int_in(name, value, 1, 1 << 24, &opt->spp, err);
+    case ID_THREADS:
+        return parse_int_in(name, value, 1, 1024, &opt->threads, err);
+    case ID_SEED:
+        if (!parse_long(value, 0, 0x7fffffffffffffffLL, &seed)) {
+            diag_set(err, NULL, 0, 0, "--seed expects a whole number >= 0, got '%s'", value);
+            return false;
+        }
+        opt->seed = (uint64_t)seed;
+        return true;
+    case ID_STATS:
+        opt->stats_path = value;
+        return true;
+    case ID_QUIET:
+        opt->quiet = true;
+        return true;
+    case ID_STRICT:
+        opt->strict = true;
+        return true;
+    case ID_HELP:
+    case ID_VERSION:
+        return true;
+    }
+    return false;
+}
+
+static void
+print_help(FILE *out, const char *stage, const char *summary, const struct option_spec *extra)
+{
+    fprintf(out, "usage: render [options] SCENE\n%s: %s\n\noptions:\n", stage, summary);
+    for (int i = 0; i < N_SHARED; i++) {
+        const struct shared_option *o = &shared_options[i];
+        char left[64];
+        snprintf(left, sizeof left, "%c%c%s--%s %s", o->short_name ? '-' : ' ',
+            o->short_name ? o->short_name : ' ', o->short_name ? ", " : "  ", o->name,
+            o->arg ? o->arg : "");
+        fprintf(out, "  %-26s %s\n", left, o->help);
+    }
+    if (extra[0].name) {
+        fprintf(out, "\noptions of this stage:\n");
+    }
+    for (int i = 0; extra[i].name; i++) {
+        char left[64];
+        snprintf(left, sizeof left, "    --%s %s", extra[i].name, extra[i].arg ? extra[i].arg : "");
+        fprintf(out, "  %-26s %s\n", left, extra[i].help);
+    }
+}
+
+/* Find the option an argument names; sets *shared or *extra_spec. */
+static bool
+find_option(const char *arg, const struct option_spec *extra, size_t name_len,
+    const struct shared_option **shared, const struct option_spec **extra_spec)
+{
+    bool is_long = arg[1] == '-';
+    const char *name = arg + (is_long ? 2 : 1);
+    for (int i = 0; i < N_SHARED; i++) {
+        const struct shared_option *o = &shared_options[i];
+        bool match = is_long ? strlen(o->name) == name_len && strncmp(o->name, name, name_len) == 0
+                             : o->short_name && name_len == 1 && name[0] == o->short_name;
+        if (match) {
+            *shared = o;
+            return true;
+        }
+    }
+    for (int i = 0; is_long && extra[i].name; i++) {
+        if (strlen(extra[i].name) == name_len && strncmp(extra[i].name, name, name_len) == 0) {
+            *extra_spec = &extra[i];
+            return true;
+        }
+    }
+    return false;
+}
+
+/* Handle argv[*i], an option; advances *i past its value. */
+static enum cli_result
+parse_option(int argc, char **argv, int *i, struct options *opt, const struct option_spec *extra,
+    struct diag *err, enum shared_id *seen)
+{
+    const char *arg = argv[*i];
+    const char *eq = arg[1] == '-' ? strchr(arg, '=') : NULL;
+    size_t name_len = eq ? (size_t)(eq - arg - 2) : strlen(arg) - (arg[1] == '-' ? 2 : 1);
+    const struct shared_option *shared = NULL;
+    const struct option_spec *spec = NULL;
+    if (!find_option(arg, extra, name_len, &shared, &spec)) {
+        diag_set(err, NULL, 0, 0, "unknown option '%s' (see --help)", arg);
+        return CLI_ERROR;
+    }
+    bool takes_value = shared ? shared->arg != NULL : spec->kind != OPT_FLAG;
+    const char *value = eq ? eq + 1 : NULL;
+    if (takes_value && !value) {
+        if (*i + 1 >= argc) {
+            diag_set(err, NULL, 0, 0, "option '%s' expects a value", arg);
+            return CLI_ERROR;
+        }
+        value = argv[++*i];
+    } else if (!takes_value && value) {
+        diag_set(err, NULL, 0, 0, "option '%s' takes no value", arg);
+        return CLI_ERROR;
+    }
+    if (shared) {
+        *seen = shared->id;
+        return apply_shared(shared->id, shared->name, value, opt, err) ? CLI_OK : CLI_ERROR;
+    }
+    return apply_extra(spec, value, err) ? CLI_OK : CLI_ERROR;
+}
+
+enum cli_result
+cli_parse(int argc, char **argv, struct options *opt, const struct cli_stage *stage, FILE *out,
+    struct diag *err)
+{
+    *opt = (struct options){.seed = 1};
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        if (arg[0] != '-' || arg[1] == '\0') {
+            if (opt->scene_path) {
+                diag_set(err, NULL, 0, 0, "more than one scene given: '%s' and '%s'",
+                    opt->scene_path, arg);
+                return CLI_ERROR;
+            }
+            opt->scene_path = arg;
+            continue;
+        }
+        enum shared_id seen = ID_OUTPUT;
+        if (parse_option(argc, argv, &i, opt, stage->extra, err, &seen) != CLI_OK) {
+            return CLI_ERROR;
+        }
+        if (seen == ID_HELP) {
+            print_help(out, stage->name, stage->summary, stage->extra);
+            return CLI_EXIT;
+        }
+        if (seen == ID_VERSION) {
+            fprintf(out, "render (%s) stagelight %s, %s precision\n", stage->name,
+                STAGELIGHT_VERSION, REAL_NAME);
+            return CLI_EXIT;
+        }
+    }
+    if (!opt->scene_path) {
+        diag_set(err, NULL, 0, 0, "no scene given (usage: render [options] SCENE; see --help)");
+        return CLI_ERROR;
+    }
+    return CLI_OK;
+}
+
+int
+cli_thread_count(const struct options *opt)
+{
+    if (opt->threads > 0) {
+        return opt->threads;
+    }
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    return cores < 1 ? 1 : cores > 1024 ? 1024 : (int)cores;
+}
+
+const char *
+cli_output_path(const struct options *opt, char *buf, size_t cap)
+{
+    if (opt->output) {
+        return opt->output;
+    }
+    const char *base = strrchr(opt->scene_path, '/');
+    base = base ? base + 1 : opt->scene_path;
+    size_t len = strcspn(base, ".");
+    snprintf(buf, cap, "%.*s.png", (int)len, base);
+    return buf;
+}

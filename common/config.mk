@@ -1,0 +1,65 @@
+# config.mk - toolchain, warnings, precision and optional dependencies.
+# Included by every Makefile of the project, after it has set ROOT.
+#
+# User knobs (GNU conventions: CFLAGS is yours to set):
+#   CC CXX CFLAGS CXXFLAGS CPPFLAGS LDFLAGS LDLIBS
+#   REAL=float      single-precision build (outputs in build/float/)
+#   SANITIZE=1      AddressSanitizer + UBSan (outputs in build/sanitize/)
+#   WERROR=1        warnings are errors
+#   OPENEXR=0|1     override the pkg-config detection of OpenEXR
+#   TINYGLTF=0|1    override the detection of tinygltf (glTF meshes)
+
+CC ?= cc
+CXX ?= c++
+CFLAGS ?= -O2 -g
+CXXFLAGS ?= -O2 -g
+PKG_CONFIG ?= pkg-config
+
+# -std=c11 also keeps floating-point contraction off (no fused multiply-add
+# behind our back), so results are the same at every optimisation level.
+WARN := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes \
+        -Wmissing-prototypes -Wvla -Wformat=2 -Wundef -Wwrite-strings
+ifeq ($(WERROR),1)
+WARN += -Werror
+endif
+
+BASE_CPPFLAGS := -D_POSIX_C_SOURCE=200809L -I$(ROOT)/common
+
+REAL ?= double
+VARIANT :=
+ifeq ($(REAL),float)
+BASE_CPPFLAGS += -DREAL_IS_FLOAT=1
+VARIANT := $(VARIANT)float/
+else ifneq ($(REAL),double)
+$(error REAL must be double or float, got '$(REAL)')
+endif
+
+SANITIZE ?= 0
+SAN_FLAGS :=
+ifeq ($(SANITIZE),1)
+SAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+VARIANT := $(VARIANT)sanitize/
+endif
+
+BUILDROOT := $(ROOT)/build/$(VARIANT)
+COMMON_LIB := $(BUILDROOT)common/libcommon.a
+
+OPENEXR ?= $(shell $(PKG_CONFIG) --exists OpenEXR 2>/dev/null && echo 1 || echo 0)
+ifeq ($(OPENEXR),1)
+EXR_CPPFLAGS := -DHAVE_OPENEXR=1 $(shell $(PKG_CONFIG) --cflags OpenEXR)
+EXR_LDLIBS := $(shell $(PKG_CONFIG) --libs OpenEXR)
+endif
+
+TINYGLTF ?= $(shell ($(PKG_CONFIG) --exists tinygltf 2>/dev/null || test -f /usr/include/tiny_gltf.h) && echo 1 || echo 0)
+ifeq ($(TINYGLTF),1)
+GLTF_LDLIBS := $(shell $(PKG_CONFIG) --libs tinygltf 2>/dev/null || echo -ltinygltf)
+LINK := $(CXX)
+LINK_LDLIBS := $(GLTF_LDLIBS) -lstdc++
+else
+LINK := $(CC)
+endif
+
+ALL_CPPFLAGS = $(BASE_CPPFLAGS) $(CPPFLAGS)
+ALL_CFLAGS = $(WARN) $(CFLAGS) $(SAN_FLAGS)
+ALL_LDFLAGS = $(LDFLAGS) $(SAN_FLAGS) -pthread
+ALL_LDLIBS = $(EXR_LDLIBS) $(LINK_LDLIBS) $(LDLIBS) -lm

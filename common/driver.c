@@ -1,0 +1,236 @@
+/*
+ * driver.c - tiles, threads, passes, progress (see driver.h).
+ *
+ * Each pass: the main thread and threads-1 workers take 16x16 tiles from an
+ * atomic counter and write one estimate per pixel into the pass buffer.
+ * When every tile is done, the pass is added to the running sum.  Pixels
+ * never share a random stream, and sums are formed in pixel order after the
+ * pass, so the result is the same bit for bit with any number of threads.
+ */
+#include "driver.h"
+
+#include <pthread.h>
+#include <signal.h>
+#include <stdatomic.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#define TILE_SIZE 16
+
+static volatile sig_atomic_t stop_requested;
+
+struct pass_state {
+    const struct render_job *job;
+    int pass;
+    int tiles_x, n_tiles;
+    atomic_int next_tile;
+    atomic_int tiles_done;
+    vec3 *values; /* this pass's estimate, one per pixel */
+    double start, last_draw;
+    pthread_mutex_t draw_lock;
+};
+
+struct worker {
+    struct pass_state *ps;
+    struct stats counts;
+    pthread_t thread;
+};
+
+void
+render_request_stop(void)
+{
+    stop_requested = 1;
+}
+
+static void
+on_interrupt(int signo)
+{
+    (void)signo;
+    render_request_stop();
+}
+
+void
+render_stop_on_interrupt(void)
+{
+    struct sigaction sa = {0};
+    sa.sa_handler = on_interrupt;
+    sa.sa_flags = SA_RESETHAND; /* a second Ctrl-C terminates as usual */
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+}
+
+static void
+draw_progress(struct pass_state *ps, bool final)
+{
+    const struct render_job *job = ps->job;
+    double now = clock_seconds();
+    if (!final && now - ps->last_draw < 0.1) {
+        return;
+    }
+    ps->last_draw = now;
+    double done = ps->pass + (double)atomic_load(&ps->tiles_done) / ps->n_tiles;
+    double fraction = final ? 1.0 : done / job->passes;
+    double elapsed = now - ps->start;
+    if (job->time_limit > 0 && elapsed / job->time_limit > fraction) {
+        fraction = elapsed / job->time_limit;
+    }
+    fraction = fraction > 1 ? 1 : fraction;
+    int bar = (int)(fraction * 30);
+    double eta = fraction > 0 ? elapsed / fraction - elapsed : 0;
+    fprintf(stderr, "\r[%.*s%.*s] %3d%%  %.1f s  ETA %.1f s  pass %d/%d ", bar,
+        "##############################", 30 - bar, "                              ",
+        (int)(fraction * 100), elapsed, eta, ps->pass + (final ? 0 : 1), job->passes);
+    if (final) {
+        fprintf(stderr, "\n");
+    }
+    fflush(stderr);
+}
+
+static void
+render_tile(struct pass_state *ps, int tile, struct stats *st)
+{
+    const struct render_job *job = ps->job;
+    int x0 = (tile % ps->tiles_x) * TILE_SIZE;
+    int y0 = (tile / ps->tiles_x) * TILE_SIZE;
+    int x1 = x0 + TILE_SIZE < job->width ? x0 + TILE_SIZE : job->width;
+    int y1 = y0 + TILE_SIZE < job->height ? y0 + TILE_SIZE : job->height;
+    for (int y = y0; y < y1; y++) {
+        for (int x = x0; x < x1; x++) {
+            uint64_t index = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
+            struct rng rng = rng_for_pixel(job->seed, index, (uint64_t)ps->pass);
+            ps->values[index] = job->pixel(job->ctx, x, y, &rng, st);
+        }
+    }
+}
+
+static void *
+work(void *arg)
+{
+    struct worker *w = arg;
+    struct pass_state *ps = w->ps;
+    while (!stop_requested) {
+        int tile = atomic_fetch_add(&ps->next_tile, 1);
+        if (tile >= ps->n_tiles) {
+            break;
+        }
+        render_tile(ps, tile, &w->counts);
+        atomic_fetch_add(&ps->tiles_done, 1);
+        if (ps->job->progress && pthread_mutex_trylock(&ps->draw_lock) == 0) {
+            draw_progress(ps, false);
+            pthread_mutex_unlock(&ps->draw_lock);
+        }
+    }
+    return NULL;
+}
+
+/* Run one pass on all threads; false if it was interrupted or threads could
+ * not be started (then *thread_error is set). */
+static bool
+run_pass(struct pass_state *ps, struct worker *workers, int n_threads, bool *thread_error)
+{
+    atomic_store(&ps->next_tile, 0);
+    atomic_store(&ps->tiles_done, 0);
+    int started = 1;
+    for (int i = 1; i < n_threads; i++, started++) {
+        workers[i].ps = ps;
+        if (pthread_create(&workers[i].thread, NULL, work, &workers[i]) != 0) {
+            *thread_error = true;
+            break;
+        }
+    }
+    workers[0].ps = ps;
+    work(&workers[0]);
+    for (int i = 1; i < started; i++) {
+        pthread_join(workers[i].thread, NULL);
+    }
+    return !*thread_error && atomic_load(&ps->tiles_done) == ps->n_tiles;
+}
+
+/* Add a finished pass to the sum; a non-finite estimate counts its pixel
+ * once in nan_pixels and contributes 0 (the guard). */
+static void
+accumulate_pass(const vec3 *values, size_t n, vec3 *sum, unsigned char *bad)
+{
+    for (size_t i = 0; i < n; i++) {
+        vec3 v = values[i];
+        if (!vec3_is_finite(v)) {
+            bad[i] = 1;
+            v = vec3_splat(0);
+        }
+        sum[i] = vec3_add(sum[i], v);
+    }
+}
+
+static void
+write_mean(const vec3 *sum, const unsigned char *bad, int passes, struct image *out,
+    struct render_result *result)
+{
+    size_t n = (size_t)out->width * (size_t)out->height;
+    real scale = passes > 0 ? 1 / (real)passes : 0;
+    for (size_t i = 0; i < n; i++) {
+        vec3 mean = vec3_scale(sum[i], scale);
+        out->rgb[3 * i + 0] = (float)mean.x;
+        out->rgb[3 * i + 1] = (float)mean.y;
+        out->rgb[3 * i + 2] = (float)mean.z;
+        result->nan_pixels += bad[i];
+    }
+}
+
+bool
+render_image(const struct render_job *job, struct image *out, struct render_result *result,
+    struct diag *err)
+{
+    *result = (struct render_result){0};
+    if (!image_alloc(out, job->width, job->height, err)) {
+        return false;
+    }
+    size_t n = (size_t)job->width * (size_t)job->height;
+    struct pass_state ps = {.job = job};
+    ps.tiles_x = (job->width + TILE_SIZE - 1) / TILE_SIZE;
+    ps.n_tiles = ps.tiles_x * ((job->height + TILE_SIZE - 1) / TILE_SIZE);
+    ps.values = malloc(n * sizeof *ps.values);
+    vec3 *sum = calloc(n, sizeof *sum);
+    unsigned char *bad = calloc(n, 1);
+    struct worker *workers = calloc((size_t)job->threads, sizeof *workers);
+    bool ok = ps.values && sum && bad && workers;
+    if (!ok) {
+        diag_set(err, NULL, 0, 0, "out of memory for a %dx%d image", job->width, job->height);
+    }
+    pthread_mutex_init(&ps.draw_lock, NULL);
+    ps.start = clock_seconds();
+    bool thread_error = false;
+    for (ps.pass = 0; ok && ps.pass < job->passes && !stop_requested; ps.pass++) {
+        bool over_time = job->time_limit > 0 && clock_seconds() - ps.start >= job->time_limit;
+        if (over_time && ps.pass > 0) {
+            break;
+        }
+        if (!run_pass(&ps, workers, job->threads, &thread_error)) {
+            break;
+        }
+        accumulate_pass(ps.values, n, sum, bad);
+        result->passes_done++;
+    }
+    if (thread_error) {
+        diag_set(err, NULL, 0, 0, "cannot start %d threads", job->threads);
+        ok = false;
+    }
+    if (ok) {
+        if (job->progress) {
+            draw_progress(&ps, true);
+        }
+        write_mean(sum, bad, result->passes_done, out, result);
+        result->interrupted = stop_requested != 0;
+        result->seconds = clock_seconds() - ps.start;
+        for (int i = 0; i < job->threads; i++) {
+            stats_add(&result->counts, &workers[i].counts);
+        }
+    } else {
+        image_free(out);
+    }
+    pthread_mutex_destroy(&ps.draw_lock);
+    free(ps.values);
+    free(sum);
+    free(bad);
+    free(workers);
+    return ok;
+}

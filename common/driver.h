@@ -1,0 +1,60 @@
+/*
+ * driver.h - the parallel tile renderer every stage uses.
+ *
+ * A stage supplies one function: the radiance estimate of one pixel for one
+ * pass.  The driver cuts the image into 16x16 tiles, lets the threads take
+ * tiles from a shared counter, gives every pixel its own random stream
+ * (rng_for_pixel: the image does not depend on the thread count), averages
+ * the passes, counts NaN/Inf pixels, draws the progress bar and keeps the
+ * time.  Stages that sample progressively (07) run many passes; a pass that
+ * is interrupted (Ctrl-C, time budget) is dropped whole, so the image always
+ * holds an equal number of samples in every pixel.
+ */
+#ifndef DRIVER_H
+#define DRIVER_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "diag.h"
+#include "image.h"
+#include "rng.h"
+#include "stats.h"
+#include "vec3.h"
+
+/* Radiance estimate for pixel (px, py) (0,0 top-left) in one pass. */
+typedef vec3 (*pixel_fn)(const void *ctx, int px, int py, struct rng *rng, struct stats *st);
+
+struct render_job {
+    int width, height;
+    int threads;       /* >= 1 */
+    int passes;        /* passes to run (>= 1); the image is their mean */
+    double time_limit; /* seconds; stop starting passes after this (0: none) */
+    uint64_t seed;
+    bool progress; /* draw a progress bar on stderr */
+    pixel_fn pixel;
+    const void *ctx;
+};
+
+struct render_result {
+    int passes_done;     /* complete passes in the image */
+    bool interrupted;    /* stopped early by render_request_stop() */
+    uint64_t nan_pixels; /* pixels with a NaN or Inf estimate in any pass */
+    struct stats counts; /* summed over threads */
+    double seconds;
+};
+
+/* Render into out (allocated here).  Returns false only when memory or
+ * threads could not be had (err says which). */
+bool render_image(const struct render_job *job, struct image *out, struct render_result *result,
+    struct diag *err);
+
+/* Ask a running render_image to stop after the tiles in flight; safe to
+ * call from a signal handler. */
+void render_request_stop(void);
+
+/* Install a SIGINT handler that calls render_request_stop() (a second
+ * Ctrl-C kills the program as usual). */
+void render_stop_on_interrupt(void);
+
+#endif /* DRIVER_H */

@@ -1,0 +1,43 @@
+/*
+ * feature_table.h - which stage models which scene feature, and what the stages
+ * before it do instead.
+ *
+ * Each stage declares the features it renders (RENDER_FEATURES in its
+ * render.h).  When a scene uses one the stage does not model, main() prints
+ * one line naming the stage that adds it and the simplification applied, or
+ * refuses the scene under --strict.  The texts live here, once, so every
+ * stage says the same thing.
+ */
+#ifndef FEATURE_TABLE_H
+#define FEATURE_TABLE_H
+
+#include "diag.h"
+#include "scene.h"
+
+#define STAGE_COUNT 7
+
+struct feature_info {
+    const char *name;   /* "area light" */
+    int first_stage;    /* first stage that models it */
+    int last_stage;     /* last stage that models it */
+    const char *before; /* what stages before first_stage do instead */
+    const char *after;  /* what stages after last_stage do instead */
+};
+
+const struct feature_info *feature_info(enum feature f);
+
+/* "05_bvh" -> 5; 0 when the name does not start with a stage number. */
+int stage_number(const char *stage_name);
+
+/* 5 -> "05_bvh"; "?" outside 1..STAGE_COUNT. */
+const char *stage_name(int number);
+
+/* The features a stage models according to the table above. */
+unsigned features_of_stage(int number);
+
+/* One diagnostic per feature the scene uses and `modelled` lacks, located at
+ * the statement that first uses it.  Fills at most max; returns the count. */
+int features_unmodelled(const struct scene *s, unsigned modelled, const char *stage, struct diag *notes,
+    int max);
+
+#endif /* FEATURE_TABLE_H */

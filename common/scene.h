@@ -1,0 +1,168 @@
+/*
+ * scene.h - the scene every stage renders, and its text format's loader.
+ *
+ * The loader accepts the whole format (docs/scene-format.md); what a stage
+ * does with each element is the stage's business.  The scene remembers which
+ * features it uses and where each first appears, so a stage can say in one
+ * line what it does not model (feature_table.h) or, with --strict, refuse.
+ *
+ * Conventions are those of SCENES.md: right-handed, y up, vertical field of
+ * view in degrees, linear RGB, Lambertian BRDF albedo/pi, point-light
+ * intensity in W/sr, one-sided quad area lights with radiance L.
+ */
+#ifndef SCENE_H
+#define SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "diag.h"
+#include "vec3.h"
+
+/* Limits that keep a hostile scene file from asking for unbounded memory. */
+#define SCENE_MAX_IMAGE_DIM 16384
+#define SCENE_MAX_NAME 63
+#define SCENE_MAX_MATERIALS 4096
+
+/* A place in a scene file (1-based line and column; 0,0 = no place). */
+struct src_loc {
+    int line, col;
+};
+
+/* ORDER MAT_KIND: append only (docs and name tables follow this order). */
+enum material_kind {
+    MAT_DIFFUSE, /* Lambertian: albedo */
+    MAT_MIRROR,  /* perfect specular reflection: reflectance per channel */
+    MAT_GLASS,   /* smooth dielectric: ior inside, 1 outside; Fresnel */
+    MAT_BLEND,   /* classic Whitted surface: albedo (diffuse) + reflectance (mirror) */
+    MAT_CHECKER, /* diffuse with a solid 3D checkerboard of albedo / albedo2 */
+};
+
+struct material {
+    char name[SCENE_MAX_NAME + 1];
+    enum material_kind kind;
+    vec3 albedo;       /* DIFFUSE, BLEND, CHECKER (the first colour) */
+    vec3 albedo2;      /* CHECKER: the second colour */
+    real checker_size; /* CHECKER: edge of one cube of the pattern (scene units) */
+    vec3 reflectance;  /* MIRROR, BLEND */
+    real ior;          /* GLASS: index of refraction inside; outside is 1 */
+    struct src_loc loc;
+};
+
+struct sphere {
+    vec3 center;
+    real radius;
+    int material;
+};
+
+/* A parallelogram: corner + s*edge1 + t*edge2 for s, t in [0, 1].
+ * Two-sided; its geometric normal is normalize(cross(edge1, edge2)). */
+struct quad {
+    vec3 corner, edge1, edge2;
+    int material;
+};
+
+/* A triangle indexes the scene's shared vertex arrays.  When smooth is true
+ * the shading normal interpolates the vertex normals (meshes that carry
+ * them); otherwise it is the geometric normal. */
+struct triangle {
+    int v[3];
+    int material;
+    bool smooth;
+};
+
+struct point_light {
+    vec3 position;
+    vec3 intensity; /* W/sr per channel */
+};
+
+/* A one-sided rectangle emitting radiance L from the side its normal
+ * normalize(cross(edge1, edge2)) points to.  As a surface it is black on
+ * both sides and blocks light like any other surface. */
+struct area_light {
+    vec3 corner, edge1, edge2;
+    vec3 radiance;
+    struct src_loc loc;
+};
+
+struct camera_desc {
+    vec3 origin, target, up;
+    real vfov_deg; /* vertical field of view, degrees, in (0, 180) */
+};
+
+/* ORDER FEATURE: append only; feature_table.c describes each. */
+enum feature {
+    FEAT_POINT_LIGHT,
+    FEAT_AREA_LIGHT,
+    FEAT_MIRROR,
+    FEAT_GLASS,
+    FEAT_BLEND,
+    FEAT_CHECKER,
+    FEAT_AMBIENT,     /* a non-zero ambient term */
+    FEAT_ENVIRONMENT, /* a non-black background, which lights the scene in 07 */
+    FEAT_MESH,        /* a triangle mesh loaded from a glTF file */
+    FEAT_COUNT,
+};
+
+#define FEATURE_BIT(f) (1u << (f))
+
+struct scene {
+    char path[512];     /* the scene file, as given */
+    int width, height;  /* image size in pixels */
+    struct camera_desc camera;
+    vec3 background;    /* radiance of rays that leave the scene */
+    vec3 ambient;       /* ambient radiance term (default 0) */
+
+    struct material *materials;
+    int n_materials;
+    struct sphere *spheres;
+    int n_spheres;
+    struct quad *quads;
+    int n_quads;
+    vec3 *positions;    /* shared vertex arrays for triangles */
+    vec3 *normals;      /* unit vertex normals; (0,0,0) where a vertex has none */
+    int n_vertices;
+    struct triangle *triangles;
+    int n_triangles;
+    struct point_light *point_lights;
+    int n_point_lights;
+    struct area_light *area_lights;
+    int n_area_lights;
+
+    unsigned features;                     /* FEATURE_BIT(f) for each feature used */
+    struct src_loc feature_loc[FEAT_COUNT]; /* statement where each is first used */
+};
+
+/* Load a scene file.  On failure returns false, frees what was built and
+ * fills err with FILE:LINE:COL and what was expected, what was found. */
+bool scene_load(const char *path, struct scene *out, struct diag *err);
+
+/* Same, from text in memory; `name` is the file name used in diagnostics and
+ * the directory mesh files are found relative to. */
+bool scene_load_string(const char *text, size_t len, const char *name, struct scene *out,
+    struct diag *err);
+
+/* Free everything; accepts a zero-initialised or half-built scene. */
+void scene_free(struct scene *s);
+
+/* The geometric normal of an area light (unit, the emitting side). */
+static inline vec3
+area_light_normal(const struct area_light *light)
+{
+    return vec3_normalize(vec3_cross(light->edge1, light->edge2));
+}
+
+static inline real
+area_light_area(const struct area_light *light)
+{
+    return vec3_length(vec3_cross(light->edge1, light->edge2));
+}
+
+static inline vec3
+area_light_center(const struct area_light *light)
+{
+    vec3 half = vec3_scale(vec3_add(light->edge1, light->edge2), (real)0.5);
+    return vec3_add(light->corner, half);
+}
+
+#endif /* SCENE_H */

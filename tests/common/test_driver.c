@@ -1,0 +1,97 @@
+/*
+ * test_driver.c - the tile renderer: every pixel computed once per pass,
+ * images independent of the thread count, passes averaged, NaN pixels
+ * counted and guarded, statistics summed over threads.
+ */
+#include <string.h>
+
+#include "check.h"
+#include "driver.h"
+
+/* A pixel function whose value depends on the pixel and its random stream. */
+static vec3
+noisy_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+{
+    (void)ctx;
+    st->rays_camera++;
+    return (vec3){(real)px, (real)py, rng_uniform(rng)};
+}
+
+static vec3
+nan_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+{
+    (void)ctx;
+    (void)rng;
+    (void)st;
+    real zero = 0;
+    return (px == 3 && py == 5) ? (vec3){zero / zero, 1, 1} : (vec3){1, 1, 1};
+}
+
+static struct render_job
+job_for(pixel_fn fn, int threads, int passes)
+{
+    return (struct render_job){
+        .width = 37,
+        .height = 21,
+        .threads = threads,
+        .passes = passes,
+        .seed = 3,
+        .pixel = fn,
+    };
+}
+
+TEST(every_pixel_once_and_thread_independent)
+{
+    struct image one = {0};
+    struct image four = {0};
+    struct render_result r1;
+    struct render_result r4;
+    struct diag err;
+    struct render_job j1 = job_for(noisy_pixel, 1, 3);
+    struct render_job j4 = job_for(noisy_pixel, 4, 3);
+    CHECK(render_image(&j1, &one, &r1, &err));
+    CHECK(render_image(&j4, &four, &r4, &err));
+    CHECK(memcmp(one.rgb, four.rgb, sizeof(float) * 3 * 37 * 21) == 0);
+    CHECK(r1.passes_done == 3 && r4.passes_done == 3);
+    CHECK(r1.counts.rays_camera == 3 * 37 * 21 && r4.counts.rays_camera == 3 * 37 * 21);
+    /* the mean of three passes of (px, py, u) */
+    CHECK(image_pixel(&one, 36, 20)[0] == 36 && image_pixel(&one, 36, 20)[1] == 20);
+    float u = image_pixel(&one, 5, 5)[2];
+    CHECK(u > 0 && u < 1);
+    image_free(&one);
+    image_free(&four);
+}
+
+TEST(nan_pixels_are_counted_and_zeroed)
+{
+    struct image img = {0};
+    struct render_result r;
+    struct diag err;
+    struct render_job j = job_for(nan_pixel, 2, 2);
+    CHECK(render_image(&j, &img, &r, &err));
+    CHECK(r.nan_pixels == 1);
+    CHECK(image_pixel(&img, 3, 5)[0] == 0);
+    CHECK(image_pixel(&img, 3, 5)[1] == 0); /* the whole estimate is dropped */
+    CHECK(image_pixel(&img, 4, 5)[0] == 1);
+    image_free(&img);
+}
+
+TEST(seed_changes_the_image)
+{
+    struct image a = {0};
+    struct image b = {0};
+    struct render_result r;
+    struct diag err;
+    struct render_job j = job_for(noisy_pixel, 2, 1);
+    CHECK(render_image(&j, &a, &r, &err));
+    j.seed = 4;
+    CHECK(render_image(&j, &b, &r, &err));
+    CHECK(memcmp(a.rgb, b.rgb, sizeof(float) * 3 * 37 * 21) != 0);
+    image_free(&a);
+    image_free(&b);
+}
+
+TEST_MAIN(
+    TEST_ENTRY(every_pixel_once_and_thread_independent),
+    TEST_ENTRY(nan_pixels_are_counted_and_zeroed),
+    TEST_ENTRY(seed_changes_the_image))

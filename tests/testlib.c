@@ -1,0 +1,237 @@
+/* testlib.c - see testlib.h. */
+#include "testlib.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#ifndef PROJECT_ROOT
+#define PROJECT_ROOT "."
+#endif
+
+const char *
+test_root(void)
+{
+    const char *root = getenv("ROOT");
+    return root && root[0] ? root : PROJECT_ROOT;
+}
+
+const char *
+test_tmpdir(void)
+{
+    static char dir[1024];
+    if (!dir[0]) {
+        const char *base = getenv("TMPDIR");
+        snprintf(dir, sizeof dir, "%s/stagelight-test-XXXXXX", base && base[0] ? base : "/tmp");
+        if (!mkdtemp(dir)) {
+            perror("mkdtemp");
+            exit(2);
+        }
+    }
+    return dir;
+}
+
+static char *
+rotating_buffer(void)
+{
+    static char buffers[8][1024];
+    static int next;
+    next = (next + 1) % 8;
+    return buffers[next];
+}
+
+const char *
+test_tmp_path(const char *name)
+{
+    char *buf = rotating_buffer();
+    snprintf(buf, 1024, "%s/%s", test_tmpdir(), name);
+    return buf;
+}
+
+const char *
+test_root_path(const char *relative)
+{
+    char *buf = rotating_buffer();
+    snprintf(buf, 1024, "%s/%s", test_root(), relative);
+    return buf;
+}
+
+bool
+test_write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        return false;
+    }
+    size_t n = strlen(text);
+    bool ok = fwrite(text, 1, n, f) == n;
+    return fclose(f) == 0 && ok;
+}
+
+bool
+test_file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+char *
+test_read_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        return NULL;
+    }
+    size_t cap = 4096;
+    size_t n = 0;
+    char *buf = malloc(cap + 1);
+    while (buf) {
+        n += fread(buf + n, 1, cap - n, f);
+        if (n < cap) {
+            break;
+        }
+        cap *= 2;
+        char *grown = realloc(buf, cap + 1);
+        if (!grown) {
+            free(buf);
+            buf = NULL;
+        }
+        buf = grown;
+    }
+    fclose(f);
+    if (buf) {
+        buf[n] = '\0';
+        if (len) {
+            *len = n;
+        }
+    }
+    return buf;
+}
+
+int
+test_run(const char *const argv[], char *output, size_t cap)
+{
+    const char *capture = test_tmp_path("run-output.txt");
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid < 0) {
+        return -1;
+    }
+    if (pid == 0) {
+        int in = open("/dev/null", O_RDONLY);
+        int out = open(capture, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (in < 0 || out < 0) {
+            _exit(127);
+        }
+        dup2(in, 0);
+        dup2(out, 1);
+        dup2(out, 2);
+        execv(argv[0], (char *const *)argv);
+        _exit(127);
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) {
+            return -1;
+        }
+    }
+    if (output && cap > 0) {
+        size_t len = 0;
+        char *text = test_read_file(capture, &len);
+        output[0] = '\0';
+        if (text) {
+            snprintf(output, cap, "%s", text);
+            free(text);
+        }
+    }
+    if (WIFEXITED(status)) {
+        return WEXITSTATUS(status);
+    }
+    return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+}
+
+const char *
+test_render_binary(void)
+{
+    const char *render = getenv("RENDER");
+    return render && render[0] ? render : NULL;
+}
+
+int
+test_render(const char *scene, const char *const args[], char *output, size_t cap)
+{
+    const char *argv[64];
+    int n = 0;
+    argv[n++] = test_render_binary();
+    if (!argv[0]) {
+        snprintf(output ? output : (char[1]){0}, output ? cap : 1, "RENDER is not set");
+        return -1;
+    }
+    argv[n++] = "-q";
+    for (int i = 0; args && args[i] && n < 62; i++) {
+        argv[n++] = args[i];
+    }
+    argv[n++] = scene;
+    argv[n] = NULL;
+    return test_run(argv, output, cap);
+}
+
+bool
+test_render_image(const char *scene, const char *const args[], struct image *out)
+{
+    static int counter;
+    char name[64];
+    snprintf(name, sizeof name, "render-%d.pfm", counter++);
+    char path[1024];
+    snprintf(path, sizeof path, "%s", test_tmp_path(name));
+    const char *argv[64];
+    int n = 0;
+    argv[n++] = "-o";
+    argv[n++] = path;
+    for (int i = 0; args && args[i] && n < 62; i++) {
+        argv[n++] = args[i];
+    }
+    argv[n] = NULL;
+    char output[8192];
+    int status = test_render(scene, argv, output, sizeof output);
+    if (status != 0) {
+        printf("render %s failed with status %d:\n%s\n", scene, status, output);
+        return false;
+    }
+    struct diag err;
+    if (!image_read_pfm(path, out, &err)) {
+        diag_print(stdout, &err, "error");
+        return false;
+    }
+    remove(path);
+    return true;
+}
+
+bool
+test_json_number(const char *path, const char *key, double *out)
+{
+    char *text = test_read_file(path, NULL);
+    if (!text) {
+        return false;
+    }
+    char pattern[256];
+    snprintf(pattern, sizeof pattern, "\"%s\"", key);
+    char *at = strstr(text, pattern);
+    bool ok = false;
+    if (at) {
+        at += strlen(pattern);
+        while (*at == ' ' || *at == ':') {
+            at++;
+        }
+        char *end;
+        *out = strtod(at, &end);
+        ok = end != at;
+    }
+    free(text);
+    return ok;
+}

@@ -1,0 +1,52 @@
+/*
+ * testlib.h - helpers shared by the test programs: temporary files, running
+ * a stage's render binary, reading what it wrote.
+ */
+#ifndef TESTLIB_H
+#define TESTLIB_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "image.h"
+
+/* The project root (environment ROOT, else the compiled-in path). */
+const char *test_root(void);
+
+/* A fresh private directory for this test program (created on first use). */
+const char *test_tmpdir(void);
+
+/* tmpdir/name, in a static rotating buffer (valid for the next 7 calls). */
+const char *test_tmp_path(const char *name);
+
+/* root/relative, in a static rotating buffer (valid for the next 7 calls). */
+const char *test_root_path(const char *relative);
+
+bool test_write_file(const char *path, const char *text);
+bool test_file_exists(const char *path);
+
+/* Read a whole file; NULL on failure.  *len gets its length. Free it. */
+char *test_read_file(const char *path, size_t *len);
+
+/* Run argv[0] with arguments argv (NULL-terminated), stdin from /dev/null.
+ * Returns the exit status (128 + signal when killed, -1 when it could not
+ * run).  Its stdout and stderr together go to `output` (truncated to cap,
+ * NUL-terminated) when output is not NULL. */
+int test_run(const char *const argv[], char *output, size_t cap);
+
+/* Path of the stage's render binary (environment RENDER); NULL if unset. */
+const char *test_render_binary(void);
+
+/* Run the stage's binary: render -q [args...] scene.  args is
+ * NULL-terminated and may be NULL. */
+int test_render(const char *scene, const char *const args[], char *output, size_t cap);
+
+/* Render scene to a PFM in the temp dir and read it back; false (with the
+ * binary's output printed) when the run or the read fails. */
+bool test_render_image(const char *scene, const char *const args[], struct image *out);
+
+/* Value of a numeric key in a flat JSON object file (the --stats file);
+ * false when the file or the key is missing. */
+bool test_json_number(const char *path, const char *key, double *out);
+
+#endif /* TESTLIB_H */
