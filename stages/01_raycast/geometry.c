@@ -4,10 +4,10 @@
  */
 #include "geometry.h"
 
-int
-prim_count(const struct scene *s)
+struct world
+world_make(const struct scene *s)
 {
-    return s->n_spheres + s->n_quads + s->n_triangles;
+    return (struct world){.scene = s, .n_prims = s->n_spheres + s->n_quads + s->n_triangles};
 }
 
 /*
@@ -190,19 +190,18 @@ hit_finish(const struct scene *s, ray r, struct hit *h)
 }
 
 bool
-scene_intersect(const struct scene *s, ray r, real t_max, struct hit *out, struct stats *st)
+world_intersect(const struct world *w, ray r, real t_max, struct hit *out, struct stats *st)
 {
     bool found = false;
-    int n = prim_count(s);
-    for (int prim = 0; prim < n; prim++) {
-        if (intersect_prim(s, prim, r, t_max, out)) {
+    for (int prim = 0; prim < w->n_prims; prim++) {
+        if (intersect_prim(w->scene, prim, r, t_max, out)) {
             t_max = out->t;
             found = true;
         }
     }
-    st->prim_tests += (uint64_t)n;
+    st->prim_tests += (uint64_t)w->n_prims;
     if (found) {
-        hit_finish(s, r, out);
+        hit_finish(w->scene, r, out);
     }
     return found;
 }

@@ -26,8 +26,13 @@ struct hit {
     int material;
 };
 
-/* Number of primitives the renderer intersects. */
-int prim_count(const struct scene *s);
+/* The shapes a ray can hit: the scene's, numbered as one list. */
+struct world {
+    const struct scene *scene;
+    int n_prims;
+};
+
+struct world world_make(const struct scene *s);
 
 /* Nearest intersection with t in (0, t_max); the direction must be unit. */
 bool intersect_sphere(const struct sphere *sphere, ray r, real t_max, real *t);
@@ -41,6 +46,6 @@ bool intersect_prim(const struct scene *s, int prim, ray r, real t_max, struct h
 void hit_finish(const struct scene *s, ray r, struct hit *h);
 
 /* The closest hit along r with t in (0, t_max), finished; false on a miss. */
-bool scene_intersect(const struct scene *s, ray r, real t_max, struct hit *out, struct stats *st);
+bool world_intersect(const struct world *w, ray r, real t_max, struct hit *out, struct stats *st);
 
 #endif /* GEOMETRY_H */

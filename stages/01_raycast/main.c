@@ -189,6 +189,7 @@ main(int argc, char **argv)
     struct report rep = {0};
     rep.seconds_load = clock_seconds() - start;
     renderer.scene = &scene;
+    renderer.world = world_make(&scene);
     render_stop_on_interrupt();
     int status = render_and_write(&renderer, &opt, output, &rep, start);
     scene_free(&scene);

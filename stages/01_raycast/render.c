@@ -40,7 +40,7 @@ vec3
 trace(const struct renderer *renderer, ray r, struct stats *st)
 {
     struct hit h;
-    if (!scene_intersect(renderer->scene, r, REAL_MAX, &h, st)) {
+    if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
         return renderer->scene->background;
     }
     return shade(renderer, &h);

@@ -18,6 +18,7 @@
 
 struct renderer {
     const struct scene *scene;
+    struct world world;
     struct camera camera;
 };
 

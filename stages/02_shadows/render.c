@@ -1,0 +1,57 @@
+/*
+ * render.c - ray casting: for each pixel, the first surface seen through its
+ * centre, lit directly by the lights it can see and by the ambient term.
+ */
+#include "render.h"
+
+#include "light.h"
+
+/* The Lambertian albedo this stage shades a material with.  Materials whose
+ * optics arrive in a later stage get the simplification feature_table.c
+ * states for them. */
+static vec3
+diffuse_albedo(const struct material *m)
+{
+    switch (m->kind) {
+    case MAT_DIFFUSE:
+    case MAT_BLEND:
+        return m->albedo;
+    case MAT_MIRROR:
+        return m->reflectance;
+    case MAT_GLASS:
+        return vec3_splat(1);
+    case MAT_CHECKER:
+        return vec3_scale(vec3_add(m->albedo, m->albedo2), (real)0.5);
+    }
+    return m->albedo;
+}
+
+vec3
+shade(const struct renderer *renderer, const struct hit *h, struct stats *st)
+{
+    const struct scene *s = renderer->scene;
+    vec3 albedo = diffuse_albedo(&s->materials[h->material]);
+    /* Lambert: L = (albedo / pi) E, plus the ambient term albedo * L_ambient. */
+    vec3 reflected = vec3_scale(direct_irradiance(&renderer->world, h, st), INV_PI);
+    return vec3_mul(albedo, vec3_add(reflected, s->ambient));
+}
+
+vec3
+trace(const struct renderer *renderer, ray r, struct stats *st)
+{
+    struct hit h;
+    if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
+        return renderer->scene->background;
+    }
+    return shade(renderer, &h, st);
+}
+
+vec3
+render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+{
+    (void)rng; /* one ray through the pixel centre: nothing is random */
+    const struct renderer *renderer = ctx;
+    ray primary = camera_ray(&renderer->camera, (real)px + (real)0.5, (real)py + (real)0.5);
+    st->rays_camera++;
+    return trace(renderer, primary, st);
+}
