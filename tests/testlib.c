@@ -36,29 +36,53 @@ test_tmpdir(void)
     return dir;
 }
 
-static char *
-rotating_buffer(void)
+/* Paths handed out stay valid until the program ends: each distinct path
+ * is stored once in this table (tests are short programs). */
+#define MAX_PATHS 1024
+static char *interned[MAX_PATHS];
+static int n_interned;
+
+static void
+free_interned(void)
 {
-    static char buffers[8][1024];
-    static int next;
-    next = (next + 1) % 8;
-    return buffers[next];
+    for (int i = 0; i < n_interned; i++) {
+        free(interned[i]);
+    }
+}
+
+static const char *
+intern_path(const char *dir, const char *name)
+{
+    char buf[2048];
+    snprintf(buf, sizeof buf, "%s/%s", dir, name);
+    for (int i = 0; i < n_interned; i++) {
+        if (strcmp(interned[i], buf) == 0) {
+            return interned[i];
+        }
+    }
+    if (n_interned == 0) {
+        atexit(free_interned);
+    }
+    char *copy = malloc(strlen(buf) + 1);
+    if (!copy || n_interned == MAX_PATHS) {
+        fprintf(stderr, "testlib: too many paths\n");
+        exit(2);
+    }
+    strcpy(copy, buf);
+    interned[n_interned++] = copy;
+    return copy;
 }
 
 const char *
 test_tmp_path(const char *name)
 {
-    char *buf = rotating_buffer();
-    snprintf(buf, 1024, "%s/%s", test_tmpdir(), name);
-    return buf;
+    return intern_path(test_tmpdir(), name);
 }
 
 const char *
 test_root_path(const char *relative)
 {
-    char *buf = rotating_buffer();
-    snprintf(buf, 1024, "%s/%s", test_root(), relative);
-    return buf;
+    return intern_path(test_root(), relative);
 }
 
 bool

@@ -16,10 +16,10 @@ const char *test_root(void);
 /* A fresh private directory for this test program (created on first use). */
 const char *test_tmpdir(void);
 
-/* tmpdir/name, in a static rotating buffer (valid for the next 7 calls). */
+/* tmpdir/name; the string stays valid until the program ends. */
 const char *test_tmp_path(const char *name);
 
-/* root/relative, in a static rotating buffer (valid for the next 7 calls). */
+/* root/relative; the string stays valid until the program ends. */
 const char *test_root_path(const char *relative);
 
 bool test_write_file(const char *path, const char *text);

@@ -115,8 +115,9 @@ TEST(width_override_keeps_aspect_ratio)
 
 TEST(bad_command_lines_exit_2_and_write_nothing)
 {
-    const char *out = test_tmp_path("never.png");
-    const char *cases[][4] = {
+    char out[1024];
+    snprintf(out, sizeof out, "%s", test_tmp_path("never.png"));
+    const char *cases[][5] = {
         {"--no-such-option", NULL},
         {"-o", test_tmp_path("never.xyz"), NULL},
         {"-t", "0", "-o", out},

@@ -1,0 +1,38 @@
+/*
+ * gltf_stub.c - gltf.h for builds without tinygltf.
+ *
+ * Compiled instead of gltf_shim.cc when the build does not find tinygltf, so
+ * the rest of the project links either way: a scene that names a mesh gets
+ * a message saying how to obtain glTF support, never a link error.
+ */
+#include "gltf.h"
+
+#include <stdlib.h>
+
+bool
+gltf_available(void)
+{
+    return false;
+}
+
+bool
+gltf_load(const char *path, struct gltf_mesh *out, struct diag *err)
+{
+    *out = (struct gltf_mesh){0};
+    diag_set(
+        err,
+        path,
+        0,
+        0,
+        "this build has no glTF support: install libtinygltf-dev and rebuild");
+    return false;
+}
+
+void
+gltf_free(struct gltf_mesh *mesh)
+{
+    free(mesh->positions);
+    free(mesh->normals);
+    free(mesh->indices);
+    *mesh = (struct gltf_mesh){0};
+}
