@@ -137,7 +137,8 @@ apply_extra(const struct option_spec *spec, const char *value, struct diag *err)
 {
     switch (spec->kind) {
     case OPT_FLAG:
-        *(bool *)spec->dest = true;
+    case OPT_UNSET:
+        *(bool *)spec->dest = spec->kind == OPT_FLAG;
         return true;
     case OPT_INT:
         return parse_int_in(spec->name, value, spec->min, spec->max, spec->dest, err);
@@ -252,7 +253,7 @@ parse_option(int argc, char **argv, int *i, struct options *opt, const struct op
         diag_set(err, NULL, 0, 0, "unknown option '%s' (see --help)", arg);
         return CLI_ERROR;
     }
-    bool takes_value = shared ? shared->arg != NULL : spec->kind != OPT_FLAG;
+    bool takes_value = shared ? shared->arg != NULL : spec->kind != OPT_FLAG && spec->kind != OPT_UNSET;
     const char *value = eq ? eq + 1 : NULL;
     if (takes_value && !value) {
         if (*i + 1 >= argc) {

@@ -27,6 +27,7 @@ struct options {
 
 enum option_kind {
     OPT_FLAG,     /* sets a bool to true */
+    OPT_UNSET,    /* sets a bool to false (--no-something) */
     OPT_INT,      /* int in [min, max] */
     OPT_REAL,     /* finite real in [min, max] */
     OPT_INT_PAIR, /* "K,M": two ints in [min, max], stored in int[2] */

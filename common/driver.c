@@ -108,18 +108,23 @@ work(void *arg)
 {
     struct worker *w = arg;
     struct pass_state *ps = w->ps;
+    /* Count on this thread's stack: counters of neighbouring workers share
+     * cache lines, and updating them per ray would make the threads fight
+     * over those lines (false sharing). */
+    struct stats counts = {0};
     while (!stop_requested) {
         int tile = atomic_fetch_add(&ps->next_tile, 1);
         if (tile >= ps->n_tiles) {
             break;
         }
-        render_tile(ps, tile, &w->counts);
+        render_tile(ps, tile, &counts);
         atomic_fetch_add(&ps->tiles_done, 1);
         if (ps->job->progress && pthread_mutex_trylock(&ps->draw_lock) == 0) {
             draw_progress(ps, false);
             pthread_mutex_unlock(&ps->draw_lock);
         }
     }
+    stats_add(&w->counts, &counts);
     return NULL;
 }
 

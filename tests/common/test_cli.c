@@ -9,6 +9,7 @@ struct knobs {
     int pair[2];
     real limit;
     bool flag;
+    bool on;
     int choice;
 };
 
@@ -19,7 +20,8 @@ parse(struct knobs *k, struct options *opt, struct diag *err, int argc, const ch
         {.name = "samples", .kind = OPT_INT, .dest = &k->samples, .min = 1, .max = 64, .arg = "N"},
         {.name = "adaptive", .kind = OPT_INT_PAIR, .dest = k->pair, .min = 1, .max = 4096},
         {.name = "time", .kind = OPT_REAL, .dest = &k->limit, .min = 0, .max = 1e6},
-        {.name = "no-thing", .kind = OPT_FLAG, .dest = &k->flag},
+        {.name = "thing", .kind = OPT_FLAG, .dest = &k->flag},
+        {.name = "no-other", .kind = OPT_UNSET, .dest = &k->on},
         {.name = "aa", .kind = OPT_CHOICE, .dest = &k->choice, .choices = "grid|jitter|adaptive"},
         {.name = NULL},
     };
@@ -60,14 +62,16 @@ TEST(shared_options_long_short_and_equals)
 
 TEST(stage_options)
 {
-    struct knobs k = {0};
+    struct knobs k = {.on = true};
     struct options opt;
     struct diag err;
     const char *argv[] = {"render", "--samples", "8", "--adaptive", "16,128", "--time=2.5",
-        "--no-thing", "--aa", "adaptive", "s.scene"};
-    CHECK(parse(&k, &opt, &err, 10, argv) == CLI_OK);
+        "--thing", "--aa", "adaptive", "--no-other", "s.scene"};
+    CHECK(parse(&k, &opt, &err, 11, argv) == CLI_OK);
     CHECK(k.samples == 8 && k.pair[0] == 16 && k.pair[1] == 128);
-    CHECK(k.limit == (real)2.5 && k.flag && k.choice == 2);
+    CHECK(k.limit == (real)2.5 && k.flag && !k.on && k.choice == 2);
+    const char *value_given[] = {"render", "--no-other=1", "s.scene"};
+    CHECK(parse(&k, &opt, &err, 3, value_given) == CLI_ERROR);
 }
 
 TEST(errors_say_what_was_expected)
