@@ -1,0 +1,192 @@
+/*
+ * render.c - Whitted ray tracing: for each pixel, the surfaces seen through
+ * many points of its square, averaged, each lit directly by the lights it can
+ * see and by the ambient term; mirrors and glass send the ray on,
+ * recursively.  Area lights are seen as themselves.
+ */
+#include "render.h"
+
+#include "optics.h"
+
+/* Parity (0 or 1) of the cell of a 1D checkerboard that x falls in;
+ * fmod keeps it exact for coordinates too large for an integer. */
+static int
+cell_parity(real x, real size)
+{
+    return fabs(fmod(floor(x / size), (real)2)) > (real)0.5;
+}
+
+/* A solid 3D checkerboard of cubes of edge checker_size.  The point is
+ * moved a quarter cube into the surface first, so a surface lying exactly
+ * on a cube face (the floor at y = 0) does not flicker between two cells
+ * with the rounding of p. */
+static vec3
+checker_albedo(const struct material *m, const struct hit *h)
+{
+    vec3 outward = h->front_face ? h->ng : vec3_neg(h->ng);
+    vec3 q = vec3_madd(h->p, outward, -m->checker_size / 4);
+    int parity = cell_parity(q.x, m->checker_size) ^ cell_parity(q.y, m->checker_size)
+        ^ cell_parity(q.z, m->checker_size);
+    return parity ? m->albedo2 : m->albedo;
+}
+
+/* The Lambertian albedo of a material's diffuse part (none for mirror and
+ * glass). */
+static vec3
+diffuse_albedo(const struct material *m, const struct hit *h)
+{
+    switch (m->kind) {
+    case MAT_DIFFUSE:
+    case MAT_BLEND:
+        return m->albedo;
+    case MAT_MIRROR:
+    case MAT_GLASS:
+        return vec3_splat(0);
+    case MAT_CHECKER:
+        return checker_albedo(m, h);
+    }
+    return m->albedo;
+}
+
+/* Radiance arriving at h from direction d, along a new ray of the chain. */
+static vec3
+trace_on(const struct renderer *renderer, const struct hit *h, vec3 d, int depth,
+    struct rng *rng, struct stats *st)
+{
+    st->rays_secondary++;
+    return trace(renderer, spawn_ray(h, d), depth + 1, rng, st);
+}
+
+/* Smooth glass: the reflected and the refracted ray, weighted by the
+ * Fresnel reflectance F and 1 - F.  Which side the ray arrives from decides
+ * whether it enters (eta = 1 / ior) or leaves (eta = ior). */
+static vec3
+shade_glass(const struct renderer *renderer, const struct material *m, ray r,
+    const struct hit *h, int depth, struct rng *rng, struct stats *st)
+{
+    vec3 n = vec3_dot(r.d, h->n) < 0 ? h->n : h->ng;
+    real eta = h->front_face ? 1 / m->ior : m->ior;
+    real f = fresnel_dielectric(-vec3_dot(r.d, n), eta);
+    vec3 l = vec3_scale(trace_on(renderer, h, reflect(r.d, n), depth, rng, st), f);
+    vec3 refracted;
+    if (f < 1 && refract(r.d, n, eta, &refracted)) {
+        l = vec3_madd(l, trace_on(renderer, h, refracted, depth, rng, st), 1 - f);
+    }
+    return l;
+}
+
+vec3
+shade(const struct renderer *renderer, ray r, const struct hit *h, int depth, struct rng *rng,
+    struct stats *st)
+{
+    const struct scene *s = renderer->scene;
+    if (h->light >= 0) {
+        /* One-sided emitter, black as a surface (SCENES.md). */
+        return h->front_face ? s->area_lights[h->light].radiance : vec3_splat(0);
+    }
+    const struct material *m = &s->materials[h->material];
+    vec3 albedo = diffuse_albedo(m, h);
+    vec3 l = vec3_splat(0);
+    if (!vec3_is_zero(albedo)) {
+        /* Lambert: L = (albedo / pi) E, plus the ambient term albedo * L_ambient. */
+        vec3 e = direct_irradiance(&renderer->world, h, &renderer->shadow, rng, st);
+        vec3 reflected = vec3_scale(e, INV_PI);
+        l = vec3_mul(albedo, vec3_add(reflected, s->ambient));
+    }
+    if (m->kind == MAT_MIRROR || m->kind == MAT_BLEND) {
+        vec3 mirrored = trace_on(renderer, h, reflect(r.d, h->n), depth, rng, st);
+        l = vec3_add(l, vec3_mul(m->reflectance, mirrored));
+    } else if (m->kind == MAT_GLASS) {
+        l = vec3_add(l, shade_glass(renderer, m, r, h, depth, rng, st));
+    }
+    return l;
+}
+
+vec3
+trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct stats *st)
+{
+    struct hit h;
+    if (depth > renderer->max_depth) {
+        return vec3_splat(0);
+    }
+    if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
+        return renderer->scene->background;
+    }
+    return shade(renderer, r, &h, depth, rng, st);
+}
+
+/* Position (in [0,1)^2 of the pixel) of sample i of n.  Grid: cell centres
+ * of a k x k grid.  Jitter: a uniform point in each cell (k = floor(sqrt n)
+ * cells a side; any samples beyond k^2 uniform over the pixel), which keeps
+ * every sample unbiased and stratifies most of them (Cook, "Stochastic
+ * Sampling in Computer Graphics", 1986). */
+static void
+sample_position(int pattern, int i, int n, struct rng *rng, real *dx, real *dy)
+{
+    int k = (int)sqrt((double)n);
+    real u = pattern == AA_GRID ? (real)0.5 : rng_uniform(rng);
+    real v = pattern == AA_GRID ? (real)0.5 : rng_uniform(rng);
+    *dx = i < k * k ? ((real)(i % k) + u) / (real)k : u;
+    *dy = i < k * k ? ((real)(i / k) + v) / (real)k : v;
+}
+
+static real
+luminance(vec3 c)
+{
+    return (real)0.2126 * c.x + (real)0.7152 * c.y + (real)0.0722 * c.z;
+}
+
+/* The sum of n samples of pixel (px, py); widens [*lum_min, *lum_max] to
+ * the range of their luminances. */
+static vec3
+sum_samples(const struct renderer *renderer, int px, int py, int pattern, int n,
+    struct rng *rng, struct stats *st, real *lum_min, real *lum_max)
+{
+    vec3 sum = vec3_splat(0);
+    for (int i = 0; i < n; i++) {
+        real dx;
+        real dy;
+        sample_position(pattern, i, n, rng, &dx, &dy);
+        ray primary = camera_ray(&renderer->camera, (real)px + dx, (real)py + dy);
+        st->rays_camera++;
+        vec3 l = trace(renderer, primary, 1, rng, st);
+        *lum_min = fmin(*lum_min, luminance(l));
+        *lum_max = fmax(*lum_max, luminance(l));
+        sum = vec3_add(sum, l);
+    }
+    return sum;
+}
+
+/* Adaptive supersampling (Whitted 1980, Mitchell 1987): a few probe samples;
+ * where their contrast (max - min) / (max + min) exceeds the threshold - an
+ * edge, a shadow boundary, a texture - the pixel gets all spp samples. */
+static vec3
+adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng,
+    struct stats *st)
+{
+    real lo = REAL_MAX;
+    real hi = -REAL_MAX;
+    int probes = renderer->spp < 4 ? renderer->spp : 4;
+    vec3 sum = sum_samples(renderer, px, py, AA_JITTER, probes, rng, st, &lo, &hi);
+    bool agree = !(hi - lo > renderer->aa_threshold * (hi + lo));
+    if (agree || probes == renderer->spp) {
+        return vec3_scale(sum, 1 / (real)probes);
+    }
+    st->extra[STAT_AA_REFINED]++;
+    int rest = renderer->spp - probes;
+    sum = vec3_add(sum, sum_samples(renderer, px, py, AA_JITTER, rest, rng, st, &lo, &hi));
+    return vec3_scale(sum, 1 / (real)renderer->spp);
+}
+
+vec3
+render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+{
+    const struct renderer *renderer = ctx;
+    if (renderer->aa == AA_ADAPTIVE) {
+        return adaptive_pixel(renderer, px, py, rng, st);
+    }
+    real lo = REAL_MAX;
+    real hi = -REAL_MAX;
+    vec3 sum = sum_samples(renderer, px, py, renderer->aa, renderer->spp, rng, st, &lo, &hi);
+    return vec3_scale(sum, 1 / (real)renderer->spp);
+}

@@ -1,0 +1,57 @@
+/*
+ * render.h - what this stage computes: the radiance arriving at the camera
+ * through each pixel.
+ */
+#ifndef RENDER_H
+#define RENDER_H
+
+#include "camera.h"
+#include "geometry.h"
+#include "light.h"
+#include "rng.h"
+#include "scene.h"
+#include "stats.h"
+#include "vec3.h"
+
+/* The scene features this stage models (see feature_table.h). */
+#define RENDER_FEATURES                                                                        \
+    (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_AMBIENT) | FEATURE_BIT(FEAT_MESH)          \
+        | FEATURE_BIT(FEAT_AREA_LIGHT) | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS)       \
+        | FEATURE_BIT(FEAT_BLEND) | FEATURE_BIT(FEAT_CHECKER))
+
+/* Where a pixel's camera samples go (ORDER: the --aa choices). */
+enum aa_pattern {
+    AA_GRID,     /* a regular k x k grid (spp = k^2) */
+    AA_JITTER,   /* one random sample in each cell of that grid */
+    AA_ADAPTIVE, /* a few jittered samples; all spp only where they disagree */
+};
+
+/* The extra statistics counter: pixels adaptive sampling refined. */
+#define STAT_AA_REFINED 1
+
+struct renderer {
+    const struct scene *scene;
+    struct world world;
+    struct camera camera;
+    struct shadow_sampling shadow;
+    int max_depth; /* longest chain of rays, the camera ray included */
+    int spp;       /* camera samples per pixel */
+    int aa;        /* enum aa_pattern */
+    real aa_threshold;
+};
+
+/* Radiance leaving the surface at h (where r hit it) towards r's origin;
+ * r is the depth-th ray of its chain. */
+vec3 shade(const struct renderer *renderer, ray r, const struct hit *h, int depth, struct rng *rng,
+    struct stats *st);
+
+/* Radiance arriving at r.o from direction -r.d; r is the depth-th ray of
+ * its chain (the camera ray is 1), and none beyond max_depth is traced. */
+vec3 trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct stats *st);
+
+/* The driver's pixel function (driver.h): the mean radiance of spp camera
+ * rays through the pixel's square, placed as the aa pattern says (a box
+ * filter: SCENES.md's pixel value). */
+vec3 render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st);
+
+#endif /* RENDER_H */

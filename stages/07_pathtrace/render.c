@@ -1,0 +1,224 @@
+/*
+ * render.c - path tracing: for each pixel, random paths from the camera
+ * through many points of its square, each bouncing off the surfaces it meets
+ * (bsdf.c), collecting light from the lights by shadow rays at every diffuse
+ * bounce (next-event estimation), ended by Russian roulette.  Their mean is
+ * an unbiased estimate of the pixel: direct and indirect light, caustics
+ * included.
+ */
+#include "render.h"
+
+#include "bsdf.h"
+
+/* Parity (0 or 1) of the cell of a 1D checkerboard that x falls in;
+ * fmod keeps it exact for coordinates too large for an integer. */
+static int
+cell_parity(real x, real size)
+{
+    return fabs(fmod(floor(x / size), (real)2)) > (real)0.5;
+}
+
+/* A solid 3D checkerboard of cubes of edge checker_size.  The point is
+ * moved a quarter cube into the surface first, so a surface lying exactly
+ * on a cube face (the floor at y = 0) does not flicker between two cells
+ * with the rounding of p. */
+static vec3
+checker_albedo(const struct material *m, const struct hit *h)
+{
+    vec3 outward = h->front_face ? h->ng : vec3_neg(h->ng);
+    vec3 q = vec3_madd(h->p, outward, -m->checker_size / 4);
+    int parity = cell_parity(q.x, m->checker_size) ^ cell_parity(q.y, m->checker_size)
+        ^ cell_parity(q.z, m->checker_size);
+    return parity ? m->albedo2 : m->albedo;
+}
+
+/* The Lambertian albedo of a material's diffuse part (none for mirror and
+ * glass). */
+static vec3
+diffuse_albedo(const struct material *m, const struct hit *h)
+{
+    switch (m->kind) {
+    case MAT_DIFFUSE:
+    case MAT_BLEND:
+        return m->albedo;
+    case MAT_MIRROR:
+    case MAT_GLASS:
+        return vec3_splat(0);
+    case MAT_CHECKER:
+        return checker_albedo(m, h);
+    }
+    return m->albedo;
+}
+
+/* Next-event estimation: the direct light reaching the diffuse part of the
+ * surface at h, by shadow rays to the lights (light.c), times albedo / pi. */
+static vec3
+direct_light(const struct renderer *renderer, const struct hit *h, vec3 albedo,
+    struct rng *rng, struct stats *st)
+{
+    struct shadow_sampling sampling = renderer->shadow;
+    if (!renderer->nee) {
+        sampling.samples = 0; /* area lights are left to the paths that hit them */
+        sampling.adaptive[0] = 0;
+    }
+    vec3 e = direct_irradiance(&renderer->world, h, &sampling, rng, st);
+    return vec3_scale(vec3_mul(albedo, e), INV_PI);
+}
+
+/* Emitted radiance the path finds at a light it hit.  With next-event
+ * estimation on, light found by a diffuse bounce was already counted by the
+ * shadow rays at the previous vertex: only camera rays and specular bounces,
+ * which shadow rays cannot imitate, count it here. */
+static vec3
+emitted(const struct renderer *renderer, const struct hit *h, const struct path *path)
+{
+    bool counted_by_nee = renderer->nee && !path->specular;
+    if (!h->front_face || counted_by_nee) {
+        return vec3_splat(0);
+    }
+    return renderer->scene->area_lights[h->light].radiance;
+}
+
+vec3
+shade(const struct renderer *renderer, ray *r, const struct hit *h, struct path *path,
+    struct rng *rng, struct stats *st)
+{
+    const struct scene *s = renderer->scene;
+    if (h->light >= 0) {
+        /* Lights are black as surfaces (SCENES.md): the path ends here. */
+        vec3 l = vec3_mul(path->beta, emitted(renderer, h, path));
+        path->beta = vec3_splat(0);
+        return l;
+    }
+    const struct material *m = &s->materials[h->material];
+    vec3 albedo = diffuse_albedo(m, h);
+    vec3 l = vec3_splat(0);
+    if (!vec3_is_zero(albedo)) {
+        l = vec3_mul(path->beta, direct_light(renderer, h, albedo, rng, st));
+    }
+    struct bsdf_sample bs;
+    if (!sample_bsdf(m, albedo, h, r->d, rng, &bs)) {
+        path->beta = vec3_splat(0);
+        return l;
+    }
+    path->beta = vec3_mul(path->beta, bs.weight);
+    path->specular = bs.specular;
+    *r = spawn_ray(h, bs.d);
+    st->rays_secondary++;
+    return l;
+}
+
+/* Russian roulette (Arvo and Kirk, "Particle Transport and Image Synthesis",
+ * 1990): past the first few bounces a path survives with probability q
+ * taken from its throughput, and a survivor's throughput is divided by q, so
+ * the expected value is unchanged while dim paths stop early. */
+static void
+russian_roulette(struct path *path, struct rng *rng)
+{
+    if (path->depth < RR_MIN_DEPTH) {
+        return;
+    }
+    real q = fmin(vec3_max_comp(path->beta), (real)0.95);
+    if (rng_uniform(rng) >= q) {
+        path->beta = vec3_splat(0);
+    } else {
+        path->beta = vec3_scale(path->beta, 1 / q);
+    }
+}
+
+vec3
+trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct stats *st)
+{
+    struct path path = {.beta = vec3_splat(1), .specular = true, .depth = depth};
+    vec3 l = vec3_splat(0);
+    while (!vec3_is_zero(path.beta) && path.depth <= renderer->max_depth) {
+        struct hit h;
+        if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
+            /* The background is a constant environment light. */
+            l = vec3_add(l, vec3_mul(path.beta, renderer->scene->background));
+            break;
+        }
+        l = vec3_add(l, shade(renderer, &r, &h, &path, rng, st));
+        if (renderer->rr) {
+            russian_roulette(&path, rng);
+        }
+        path.depth++;
+    }
+    return l;
+}
+
+/* Position (in [0,1)^2 of the pixel) of sample i of n.  Grid: cell centres
+ * of a k x k grid.  Jitter: a uniform point in each cell (k = floor(sqrt n)
+ * cells a side; any samples beyond k^2 uniform over the pixel), which keeps
+ * every sample unbiased and stratifies most of them (Cook, "Stochastic
+ * Sampling in Computer Graphics", 1986). */
+static void
+sample_position(int pattern, int i, int n, struct rng *rng, real *dx, real *dy)
+{
+    int k = (int)sqrt((double)n);
+    real u = pattern == AA_GRID ? (real)0.5 : rng_uniform(rng);
+    real v = pattern == AA_GRID ? (real)0.5 : rng_uniform(rng);
+    *dx = i < k * k ? ((real)(i % k) + u) / (real)k : u;
+    *dy = i < k * k ? ((real)(i / k) + v) / (real)k : v;
+}
+
+static real
+luminance(vec3 c)
+{
+    return (real)0.2126 * c.x + (real)0.7152 * c.y + (real)0.0722 * c.z;
+}
+
+/* The sum of n samples of pixel (px, py); widens [*lum_min, *lum_max] to
+ * the range of their luminances. */
+static vec3
+sum_samples(const struct renderer *renderer, int px, int py, int pattern, int n,
+    struct rng *rng, struct stats *st, real *lum_min, real *lum_max)
+{
+    vec3 sum = vec3_splat(0);
+    for (int i = 0; i < n; i++) {
+        real dx;
+        real dy;
+        sample_position(pattern, i, n, rng, &dx, &dy);
+        ray primary = camera_ray(&renderer->camera, (real)px + dx, (real)py + dy);
+        st->rays_camera++;
+        vec3 l = trace(renderer, primary, 1, rng, st);
+        *lum_min = fmin(*lum_min, luminance(l));
+        *lum_max = fmax(*lum_max, luminance(l));
+        sum = vec3_add(sum, l);
+    }
+    return sum;
+}
+
+/* Adaptive supersampling (Whitted 1980, Mitchell 1987): a few probe samples;
+ * where their contrast (max - min) / (max + min) exceeds the threshold - an
+ * edge, a shadow boundary, a texture - the pixel gets all spp samples. */
+static vec3
+adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng,
+    struct stats *st)
+{
+    real lo = REAL_MAX;
+    real hi = -REAL_MAX;
+    int probes = renderer->spp < 4 ? renderer->spp : 4;
+    vec3 sum = sum_samples(renderer, px, py, AA_JITTER, probes, rng, st, &lo, &hi);
+    bool agree = !(hi - lo > renderer->aa_threshold * (hi + lo));
+    if (agree || probes == renderer->spp) {
+        return vec3_scale(sum, 1 / (real)probes);
+    }
+    st->extra[STAT_AA_REFINED]++;
+    int rest = renderer->spp - probes;
+    sum = vec3_add(sum, sum_samples(renderer, px, py, AA_JITTER, rest, rng, st, &lo, &hi));
+    return vec3_scale(sum, 1 / (real)renderer->spp);
+}
+
+vec3
+render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+{
+    const struct renderer *renderer = ctx;
+    if (renderer->aa == AA_ADAPTIVE) {
+        return adaptive_pixel(renderer, px, py, rng, st);
+    }
+    real lo = REAL_MAX;
+    real hi = -REAL_MAX;
+    vec3 sum = sum_samples(renderer, px, py, renderer->aa, renderer->spp, rng, st, &lo, &hi);
+    return vec3_scale(sum, 1 / (real)renderer->spp);
+}
