@@ -9,10 +9,14 @@
  *   - the model is read here, at most GLTF_MAX_FILE_BYTES, and a .glb's
  *     chunk layout is checked before tinygltf sees it (tinygltf 2.7.0 lets
  *     a BIN chunk run 8 bytes past the end of the file);
+ *   - a scan of the JSON text refuses nesting deeper than
+ *     GLTF_MAX_JSON_DEPTH (tinygltf copies "extras" recursively and a few
+ *     megabytes of '[' overflow the stack) and, in a .glb, more than one
+ *     buffer without a uri (tinygltf copies the BIN chunk for each);
  *   - every external file goes through our filesystem callbacks, which
  *     accept only relative paths below the model's directory, without a
  *     ".." component or a URI scheme (data: URIs never reach them: tinygltf
- *     decodes those itself), and read at most GLTF_MAX_FILE_BYTES;
+ *     decodes those itself), and read at most GLTF_MAX_FILE_BYTES in all;
  *   - images are never decoded (Duck.glb has a texture; we need none);
  *   - sizes and offsets are checked in size_t with overflow guards before
  *     anything is read, and totals before anything is allocated;
@@ -54,10 +58,10 @@ extern "C" {
 #include "gltf.h"
 }
 
-// Largest file read, the model or an external buffer: far above any mesh
-// this renderer can trace, small enough to refuse a hostile size up front.
+// Most bytes read from the model file, and from all its external files
+// together: far above any mesh this renderer can trace, small enough to
+// refuse a hostile size before reading it.
 #define GLTF_MAX_FILE_BYTES ((size_t)1 << 30)
-#define GLTF_MAX_FILE_TEXT "1 GiB"
 
 // The scene indexes vertices and triangle corners with int.
 #define GLTF_MAX_VERTICES ((size_t)INT_MAX / 3)
@@ -73,13 +77,19 @@ extern "C" {
 #define GLB_CHUNK_JSON 0x4E4F534Au
 #define GLB_CHUNK_BIN 0x004E4942u
 
+// JSON nested deeper is refused (see the top); glTF's own structure is less
+// than 10 levels deep.
+#define GLTF_MAX_JSON_DEPTH 128
+
 // A node matrix's last row must be (0 0 0 1) to within this.
 #define AFFINE_TOLERANCE 1e-6
 
-// The model's directory as tinygltf joins it to a URI, and why the last
-// external file was refused (tinygltf only says "File not found").
+// The model's directory as tinygltf joins it to a URI, the bytes external
+// files may still take, and why the last one was refused (tinygltf only
+// says "File not found").
 struct fs_guard {
     std::string prefix;
+    size_t budget;
     std::string refused_uri;
     std::string refusal;
 };
@@ -128,7 +138,7 @@ format(const char *fmt, ...)
 /* --- reading files ------------------------------------------------------- */
 
 static bool
-read_open_file(int fd, std::vector<unsigned char> *out, std::string *why)
+read_open_file(int fd, size_t limit, std::vector<unsigned char> *out, std::string *why)
 {
     struct stat st;
     if (fstat(fd, &st) != 0) {
@@ -139,9 +149,8 @@ read_open_file(int fd, std::vector<unsigned char> *out, std::string *why)
         *why = "not a regular file";
         return false;
     }
-    if ((uintmax_t)st.st_size > GLTF_MAX_FILE_BYTES) {
-        *why =
-            format("%jd bytes is more than the " GLTF_MAX_FILE_TEXT " limit", (intmax_t)st.st_size);
+    if ((uintmax_t)st.st_size > limit) {
+        *why = format("%jd bytes is more than the %zu bytes allowed", (intmax_t)st.st_size, limit);
         return false;
     }
     size_t size = (size_t)st.st_size;
@@ -161,9 +170,9 @@ read_open_file(int fd, std::vector<unsigned char> *out, std::string *why)
     return true;
 }
 
-// A whole regular file of at most GLTF_MAX_FILE_BYTES.
+// A whole regular file of at most limit bytes.
 static bool
-read_file(const std::string &path, std::vector<unsigned char> *out, std::string *why)
+read_file(const std::string &path, size_t limit, std::vector<unsigned char> *out, std::string *why)
 {
     // O_NONBLOCK: opening a FIFO must not wait for a writer.
     int fd = open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
@@ -171,7 +180,7 @@ read_file(const std::string &path, std::vector<unsigned char> *out, std::string 
         *why = format("cannot open: %s", strerror(errno));
         return false;
     }
-    bool ok = read_open_file(fd, out, why);
+    bool ok = read_open_file(fd, limit, out, why);
     close(fd);
     return ok;
 }
@@ -274,7 +283,8 @@ guarded_read_file(
     if (!uri_of(guard, path, &uri) || !unsafe_uri_reason(uri).empty()) {
         uri = path;
         why = "it is outside the model's directory";
-    } else if (read_file(path, out, &why)) {
+    } else if (read_file(path, guard->budget, out, &why)) {
+        guard->budget -= out->size();
         return true;
     }
     refuse(guard, uri, "cannot be read: " + why);
@@ -313,9 +323,9 @@ read_u32le(const unsigned char *p)
     return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
-// The header and chunk sizes of a .glb agree with the file's length.
+// The 12-byte header: magic, version, and a length equal to the file's.
 static bool
-check_glb_layout(const std::vector<unsigned char> &bytes, std::string *why)
+check_glb_header(const std::vector<unsigned char> &bytes, std::string *why)
 {
     size_t size = bytes.size();
     if (size < 4 || memcmp(bytes.data(), "glTF", 4) != 0) {
@@ -338,12 +348,24 @@ check_glb_layout(const std::vector<unsigned char> &bytes, std::string *why)
             size);
         return false;
     }
+    return true;
+}
+
+// The header, then a JSON chunk and an optional BIN chunk that fit the file.
+static bool
+check_glb_layout(const std::vector<unsigned char> &bytes, std::string *why)
+{
+    if (!check_glb_header(bytes, why)) {
+        return false;
+    }
+    const unsigned char *b = bytes.data();
+    size_t size = bytes.size();
     size_t json_len = read_u32le(b + GLB_HEADER_BYTES);
+    size_t at = GLB_HEADER_BYTES + GLB_CHUNK_HEADER_BYTES;
     if (read_u32le(b + GLB_HEADER_BYTES + 4) != GLB_CHUNK_JSON) {
         *why = "the first GLB chunk is not JSON";
         return false;
     }
-    size_t at = GLB_HEADER_BYTES + GLB_CHUNK_HEADER_BYTES;
     if (json_len > size - at) {
         *why = format("the JSON chunk (%zu bytes) runs past the end of the file", json_len);
         return false;
@@ -365,6 +387,91 @@ check_glb_layout(const std::vector<unsigned char> &bytes, std::string *why)
         *why = format("the BIN chunk (%zu bytes) runs past the end of the file", bin_len);
         return false;
     }
+    return true;
+}
+
+// The JSON pre-scan follows strings and brackets only (the parser judges
+// the rest): how deep arrays and objects nest, and which members of the
+// top-level "buffers" array have a "uri".
+struct json_scan {
+    const unsigned char *text;
+    int depth;
+    size_t last_start, last_len;  // the last string read, raw
+    bool key_is_buffers;  // the root member being read is "buffers"
+    bool in_buffers;  // inside that member's array
+    bool has_uri;  // the buffer object being read has a "uri"
+    size_t without_uri;  // buffer objects without one
+};
+
+static bool
+last_string_is(const json_scan *s, const char *word)
+{
+    size_t n = strlen(word);
+    return s->last_len == n && memcmp(s->text + s->last_start, word, n) == 0;
+}
+
+// A string followed by ':' names a member.
+static void
+scan_colon(json_scan *s)
+{
+    if (s->depth == 1) {
+        // A name with escapes might spell "buffers": take it as if it did.
+        bool escaped = memchr(s->text + s->last_start, '\\', s->last_len) != nullptr;
+        s->key_is_buffers = escaped || last_string_is(s, "buffers");
+    } else if (s->depth == 3 && s->in_buffers && last_string_is(s, "uri")) {
+        s->has_uri = true;
+    }
+}
+
+static void
+scan_open(json_scan *s, unsigned char c)
+{
+    s->depth++;
+    if (s->depth == 2) {
+        s->in_buffers = c == '[' && s->key_is_buffers;
+    } else if (s->depth == 3 && s->in_buffers) {
+        s->has_uri = false;
+    }
+}
+
+static void
+scan_close(json_scan *s)
+{
+    if (s->depth == 3 && s->in_buffers) {
+        s->without_uri += !s->has_uri;
+    }
+    s->depth--;
+}
+
+// Checks the nesting depth; counts the buffers without a uri.
+static bool
+scan_json(const unsigned char *text, size_t len, size_t *without_uri, std::string *why)
+{
+    json_scan s = {};
+    s.text = text;
+    for (size_t i = 0; i < len; i++) {
+        unsigned char c = text[i];
+        if (c == '"') {
+            size_t end = i + 1;
+            while (end < len && text[end] != '"') {
+                end += text[end] == '\\' ? 2 : 1;  // an escaped '"' does not end it
+            }
+            s.last_start = i + 1;
+            s.last_len = (end < len ? end : len) - s.last_start;
+            i = end;
+        } else if (c == ':') {
+            scan_colon(&s);
+        } else if (c == '[' || c == '{') {
+            scan_open(&s, c);
+        } else if (c == ']' || c == '}') {
+            scan_close(&s);
+        }
+        if (s.depth > GLTF_MAX_JSON_DEPTH) {
+            *why = format("the JSON nests deeper than %d levels", GLTF_MAX_JSON_DEPTH);
+            return false;
+        }
+    }
+    *without_uri = s.without_uri;
     return true;
 }
 
@@ -409,23 +516,39 @@ tidy_message(const std::string &text)
     return line;
 }
 
+// What tinygltf is not trusted with: a .glb's chunk layout, the JSON's
+// nesting, and buffers that would each copy the BIN chunk.
 static bool
-parse_model(const char *path, tinygltf::Model *model, fs_guard *guard, std::string *why)
+check_before_parsing(const std::vector<unsigned char> &bytes, bool binary, std::string *why)
 {
-    std::vector<unsigned char> bytes;
-    if (!read_file(path, &bytes, why)) {
-        return false;
-    }
-    if (bytes.empty()) {
-        *why = "the file is empty";
-        return false;
-    }
-    bool binary = looks_binary(path, bytes);
     if (binary && !check_glb_layout(bytes, why)) {
         return false;
     }
-    std::string dir = model_directory(path);
-    guard->prefix = dir.back() == '/' ? dir : dir + "/";
+    const unsigned char *json =
+        bytes.data() + (binary ? GLB_HEADER_BYTES + GLB_CHUNK_HEADER_BYTES : 0);
+    size_t json_len = binary ? read_u32le(bytes.data() + GLB_HEADER_BYTES) : bytes.size();
+    size_t without_uri = 0;
+    if (!scan_json(json, json_len, &without_uri, why)) {
+        return false;
+    }
+    // The specification lets only the first buffer use the BIN chunk.
+    if (binary && without_uri > 1) {
+        *why = format("%zu buffers have no uri: only the first may use the BIN chunk", without_uri);
+        return false;
+    }
+    return true;
+}
+
+// tinygltf on the checked bytes, with our filesystem and image callbacks.
+static bool
+run_tinygltf(
+    const std::vector<unsigned char> &bytes,
+    bool binary,
+    const std::string &dir,
+    tinygltf::Model *model,
+    fs_guard *guard,
+    std::string *why)
+{
     tinygltf::TinyGLTF loader;
     loader.SetImageLoader(skip_image, nullptr);
     tinygltf::FsCallbacks fs =
@@ -434,10 +557,9 @@ parse_model(const char *path, tinygltf::Model *model, fs_guard *guard, std::stri
     std::string err;
     std::string warn;
     unsigned size = (unsigned)bytes.size();
-    bool ok =
-        binary
-            ? loader.LoadBinaryFromMemory(model, &err, &warn, bytes.data(), size, dir)
-            : loader.LoadASCIIFromString(model, &err, &warn, (const char *)bytes.data(), size, dir);
+    const char *text = (const char *)bytes.data();
+    bool ok = binary ? loader.LoadBinaryFromMemory(model, &err, &warn, bytes.data(), size, dir)
+                     : loader.LoadASCIIFromString(model, &err, &warn, text, size, dir);
     if (!ok) {
         bool refused = !guard->refusal.empty() && err.find(guard->refused_uri) != err.npos;
         *why = refused ? guard->refusal : tidy_message(err);
@@ -446,6 +568,27 @@ parse_model(const char *path, tinygltf::Model *model, fs_guard *guard, std::stri
         }
     }
     return ok;
+}
+
+static bool
+parse_model(const char *path, tinygltf::Model *model, fs_guard *guard, std::string *why)
+{
+    std::vector<unsigned char> bytes;
+    if (!read_file(path, GLTF_MAX_FILE_BYTES, &bytes, why)) {
+        return false;
+    }
+    if (bytes.empty()) {
+        *why = "the file is empty";
+        return false;
+    }
+    bool binary = looks_binary(path, bytes);
+    if (!check_before_parsing(bytes, binary, why)) {
+        return false;
+    }
+    std::string dir = model_directory(path);
+    guard->prefix = dir.back() == '/' ? dir : dir + "/";
+    guard->budget = GLTF_MAX_FILE_BYTES;
+    return run_tinygltf(bytes, binary, dir, model, guard, why);
 }
 
 // Extensions that only change appearance, which we ignore anyway.
@@ -744,7 +887,43 @@ view_bytes(
     return true;
 }
 
-// The accessor's elements all lie inside its buffer view.
+// The accessor holds what we read (float VEC3, or unsigned SCALAR indices)
+// in a buffer view; *elem gets the size of one element in bytes.
+static bool
+check_accessor_type(
+    const tinygltf::Accessor &a,
+    int index,
+    const char *ctx,
+    bool is_index,
+    size_t *elem,
+    std::string *why)
+{
+    if (a.sparse.isSparse) {
+        *why = format("%s: accessor %d: sparse accessors are not supported", ctx, index);
+        return false;
+    }
+    int want_type = is_index ? TINYGLTF_TYPE_SCALAR : TINYGLTF_TYPE_VEC3;
+    size_t comp = component_bytes(a.componentType, is_index);
+    if (a.type != want_type || comp == 0) {
+        *why = format(
+            "%s: accessor %d must be %s (it is %s of componentType %d)",
+            ctx,
+            index,
+            is_index ? "unsigned byte, short or int SCALAR" : "float VEC3",
+            type_name(a.type),
+            a.componentType);
+        return false;
+    }
+    if (a.bufferView < 0) {
+        *why = format("%s: accessor %d has no buffer view", ctx, index);
+        return false;
+    }
+    *elem = comp * (is_index ? 1 : 3);
+    return true;
+}
+
+// The accessor's elements all lie inside its buffer view, itself inside the
+// bytes loaded for its buffer.
 static bool
 check_accessor(
     const tinygltf::Model &model,
@@ -754,38 +933,18 @@ check_accessor(
     view *out,
     std::string *why)
 {
+    const char *c = ctx.c_str();
     if (index < 0 || (size_t)index >= model.accessors.size()) {
-        *why = format("%s: accessor %d does not exist", ctx.c_str(), index);
+        *why = format("%s: accessor %d does not exist", c, index);
         return false;
     }
     const tinygltf::Accessor &a = model.accessors[(size_t)index];
-    const char *c = ctx.c_str();
-    if (a.sparse.isSparse) {
-        *why = format("%s: accessor %d: sparse accessors are not supported", c, index);
-        return false;
-    }
-    int want_type = is_index ? TINYGLTF_TYPE_SCALAR : TINYGLTF_TYPE_VEC3;
-    size_t comp = component_bytes(a.componentType, is_index);
-    if (a.type != want_type || comp == 0) {
-        const char *want = is_index ? "unsigned byte, short or int SCALAR" : "float VEC3";
-        *why = format(
-            "%s: accessor %d must be %s (it is %s of componentType %d)",
-            c,
-            index,
-            want,
-            type_name(a.type),
-            a.componentType);
-        return false;
-    }
-    if (a.bufferView < 0) {
-        *why = format("%s: accessor %d has no buffer view", c, index);
-        return false;
-    }
+    size_t elem = 0;
     const tinygltf::BufferView *bv = nullptr;
-    if (!view_bytes(model, a.bufferView, ctx, &bv, why)) {
+    if (!check_accessor_type(a, index, c, is_index, &elem, why)
+        || !view_bytes(model, a.bufferView, ctx, &bv, why)) {
         return false;
     }
-    size_t elem = comp * (is_index ? 1 : 3);
     size_t stride = bv->byteStride ? bv->byteStride : elem;
     if (stride < elem) {
         *why = format(
@@ -807,11 +966,8 @@ check_accessor(
         return false;
     }
     const unsigned char *base = model.buffers[(size_t)bv->buffer].data.data();
-    *out = view{
-        a.count ? base + bv->byteOffset + a.byteOffset : nullptr,
-        a.count,
-        stride,
-        a.componentType};
+    const unsigned char *first = a.count ? base + bv->byteOffset + a.byteOffset : nullptr;
+    *out = view{first, a.count, stride, a.componentType};
     return true;
 }
 

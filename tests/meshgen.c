@@ -101,6 +101,8 @@ ring_vertex(int n_phi, int ring, int seg)
     return 1 + (size_t)(ring - 1) * (size_t)n_phi + (size_t)(seg % n_phi);
 }
 
+/* Unit directions from the centre, stored as the normals: the positions
+ * are made from them by place_on_sphere. */
 static void
 sphere_vertices(struct meshgen_mesh *m, int n_theta, int n_phi)
 {
@@ -832,46 +834,42 @@ json_view(struct text *t, struct section s, int target, bool last)
         last ? "" : ",");
 }
 
+/* Accessor `view` (its buffer view has the same number) of count elements. */
+static void
+json_accessor(struct text *t, int view, int component_type, size_t count, const char *type)
+{
+    text_printf(
+        t,
+        "%s{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"%s\"",
+        view ? "," : "",
+        view,
+        component_type,
+        count,
+        type);
+}
+
 /* Accessors and buffer views in the order POSITION, NORMAL, indices. */
 static void
 json_accessors(struct text *t, const struct glb_plan *plan)
 {
     float lo[3];
     float hi[3];
-    text_printf(
-        t,
-        "\"accessors\":[{\"bufferView\":0,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC3\"",
-        GLTF_FLOAT,
-        plan->n_vertices);
+    text_printf(t, "\"accessors\":[");
+    json_accessor(t, 0, GLTF_FLOAT, plan->n_vertices, "VEC3");
     if (position_bounds(plan, lo, hi)) {
-        text_printf(
-            t,
-            ",\"min\":[%.9g,%.9g,%.9g],\"max\":[%.9g,%.9g,%.9g]",
-            lo[0],
-            lo[1],
-            lo[2],
-            hi[0],
-            hi[1],
-            hi[2]);
+        text_printf(t, ",\"min\":[%.9g,%.9g,%.9g]", lo[0], lo[1], lo[2]);
+        text_printf(t, ",\"max\":[%.9g,%.9g,%.9g]", hi[0], hi[1], hi[2]);
     }
     text_printf(t, "}");
     int view = 1;
     if (plan->normals) {
-        text_printf(
-            t,
-            ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"VEC3\"}",
-            view++,
-            GLTF_FLOAT,
-            plan->n_vertices);
+        json_accessor(t, view++, GLTF_FLOAT, plan->n_vertices, "VEC3");
+        text_printf(t, "}");
     }
     if (plan->index_bytes) {
         int type = plan->index_bytes == 2 ? GLTF_UNSIGNED_SHORT : GLTF_UNSIGNED_INT;
-        text_printf(
-            t,
-            ",{\"bufferView\":%d,\"componentType\":%d,\"count\":%zu,\"type\":\"SCALAR\"}",
-            view,
-            type,
-            3 * plan->mesh->n_triangles);
+        json_accessor(t, view, type, 3 * plan->mesh->n_triangles, "SCALAR");
+        text_printf(t, "}");
     }
     text_printf(t, "],\"bufferViews\":[");
     json_view(t, plan->pos, GLTF_ARRAY_BUFFER, !plan->normals && !plan->index_bytes);

@@ -9,7 +9,6 @@
  * skip in builds without tinygltf, except stub_message, which runs only
  * there.
  */
-#include <errno.h>
 #include <float.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -281,23 +280,45 @@ or_default(const char *part, const char *fallback)
     return part ? part : fallback;
 }
 
-/* The document, in a static buffer. */
+#define TRI_FORMAT \
+    "{\"asset\":{\"version\":\"2.0\"},%s%s\"nodes\":[%s],\"meshes\":[{\"primitives\":[{%s}]}]," \
+    "\"accessors\":[%s],\"bufferViews\":[%s],\"buffers\":[{%s}]}"
+
+/* The document, in a buffer kept until the next call ("" if memory runs
+ * out, which the loader then refuses). */
 static const char *
 tri_json(const struct tri_gltf *g)
 {
-    static char json[131072];
-    snprintf(
-        json,
-        sizeof json,
-        "{\"asset\":{\"version\":\"2.0\"},%s%s\"nodes\":[%s],\"meshes\":[{\"primitives\":[{%s}]}],"
-        "\"accessors\":[%s],\"bufferViews\":[%s],\"buffers\":[{%s}]}",
+    static char *json;
+    const char *parts[7] = {
         or_default(g->top, ""),
         or_default(g->scene, TRI_SCENE),
         or_default(g->nodes, TRI_NODES),
         or_default(g->primitive, TRI_PRIMITIVE),
         or_default(g->accessors, TRI_ACCESSORS),
         or_default(g->views, TRI_VIEWS),
-        or_default(g->buffer, TRI_BUFFER));
+        or_default(g->buffer, TRI_BUFFER),
+    };
+    size_t len = sizeof TRI_FORMAT;
+    for (int i = 0; i < 7; i++) {
+        len += strlen(parts[i]);
+    }
+    free(json);
+    json = malloc(len);
+    if (!json) {
+        return "";
+    }
+    snprintf(
+        json,
+        len,
+        TRI_FORMAT,
+        parts[0],
+        parts[1],
+        parts[2],
+        parts[3],
+        parts[4],
+        parts[5],
+        parts[6]);
     return json;
 }
 
@@ -727,6 +748,30 @@ TEST(hand_made_triangle_loads)
     gltf_free(&m);
 }
 
+TEST(uint8_indices)
+{
+    REQUIRE_GLTF();
+    unsigned char bin[TRI_BIN_LEN];
+    tri_bin(bin);
+    bin[36] = 2;  // indices 2 0 1 as bytes
+    bin[37] = 0;
+    bin[38] = 1;
+    struct tri_gltf g = {
+        .accessors = TRI_POSITIONS
+        ",{\"bufferView\":1,\"componentType\":5121,\"count\":3,\"type\":\"SCALAR\"}",
+        .views = TRI_VIEW_POS ",{\"buffer\":0,\"byteOffset\":36,\"byteLength\":3}",
+    };
+    const char *path = test_tmp_path("u8.glb");
+    CHECK(write_glb(path, tri_json(&g), bin, sizeof bin));
+    struct gltf_mesh m = {0};
+    CHECK(load(path, &m));
+    CHECK(m.n_triangles == 1);
+    if (m.n_triangles == 1) {
+        CHECK(m.indices[0] == 2 && m.indices[1] == 0 && m.indices[2] == 1);
+    }
+    gltf_free(&m);
+}
+
 TEST(empty_and_garbage)
 {
     REQUIRE_GLTF();
@@ -894,6 +939,7 @@ TEST(accessor_out_of_bounds)
          "no buffer view"},
         // stride smaller than an element
         {NULL, "{\"buffer\":0,\"byteLength\":36,\"byteStride\":4}," TRI_VIEW_IDX, "byteStride 4"},
+        {NULL, "{\"buffer\":0,\"byteLength\":36,\"byteStride\":14}," TRI_VIEW_IDX, NULL},
         // wrong types
         {"{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC2\"}," TRI_INDICES,
          NULL,
@@ -1137,6 +1183,140 @@ TEST(interleaved_attributes)
     gltf_free(&m);
 }
 
+/* Base64 (RFC 4648) of n bytes into out (4 * ceil(n / 3) + 1 bytes). */
+static void
+base64(const unsigned char *in, size_t n, char *out)
+{
+    static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (size_t i = 0; i < n; i += 3) {
+        size_t left = n - i;  // bytes in this group, 3 unless the last
+        uint32_t v = (uint32_t)in[i] << 16;
+        v |= left > 1 ? (uint32_t)in[i + 1] << 8 : 0;
+        v |= left > 2 ? (uint32_t)in[i + 2] : 0;
+        for (size_t k = 0; k < 4; k++) {
+            // A group of b bytes gives b + 1 digits, then '=' padding.
+            *out++ = k <= left ? digits[(v >> (18 - 6 * k)) & 63] : '=';
+        }
+    }
+    *out = '\0';
+}
+
+/* Brackets nested n deep inside "extras" (tinygltf copies extras
+ * recursively: without a depth limit a long run of '[' overflows the stack). */
+static char *
+nested_extras(size_t n)
+{
+    char *extras = malloc(2 * n + 16);
+    if (extras) {
+        memset(extras, '[', n);
+        memset(extras + n, ']', n);
+        extras[2 * n] = '\0';
+    }
+    return extras;
+}
+
+TEST(deeply_nested_json)
+{
+    REQUIRE_GLTF();
+    const size_t depths[] = {100, 1000000};
+    for (int i = 0; i < 2; i++) {
+        char *extras = nested_extras(depths[i]);
+        char *nodes = extras ? malloc(2 * depths[i] + 64) : NULL;
+        CHECK(nodes != NULL);
+        if (!nodes) {
+            free(extras);
+            return;
+        }
+        sprintf(nodes, "{\"mesh\":0,\"extras\":%s}", extras);
+        struct tri_gltf g = {.nodes = nodes};
+        unsigned char bin[TRI_BIN_LEN];
+        tri_bin(bin);
+        const char *path = test_tmp_path("nested.glb");
+        CHECK(write_glb(path, tri_json(&g), bin, sizeof bin));
+        if (i == 0) {
+            struct gltf_mesh m = {0};
+            CHECK(load(path, &m));
+            gltf_free(&m);
+        } else {
+            check_refused(path, "nests deeper");
+        }
+        free(extras);
+        free(nodes);
+    }
+}
+
+/* tinygltf copies the BIN chunk once per buffer without a uri: only the
+ * first buffer may be one (as the specification says). */
+TEST(bin_chunk_shared_once)
+{
+    REQUIRE_GLTF();
+    struct tri_gltf two = {.top = "\"buffers\":[{\"byteLength\":44},{\"byteLength\":44}],"};
+    // tri_json adds its own "buffers" member after .top: both count.
+    check_refused(tri_glb("twobuffers.glb", &two), "3 buffers have no uri");
+    struct tri_gltf escaped = {.top = "\"buf\\u0066ers\":[{\"byteLength\":44}],"};
+    check_refused(tri_glb("escaped.glb", &escaped), "buffers have no uri");
+    unsigned char bin[TRI_BIN_LEN];
+    tri_bin(bin);
+    char b64[64];
+    base64(bin, sizeof bin, b64);
+    char buffers[256];
+    snprintf(
+        buffers,
+        sizeof buffers,
+        "\"byteLength\":44},{\"uri\":\"data:application/octet-stream;base64,%s\",\"byteLength\":44",
+        b64);
+    struct gltf_mesh m = {0};
+    CHECK(load(tri_glb("bin-and-data.glb", &(struct tri_gltf){.buffer = buffers}), &m));
+    CHECK(m.n_triangles == 1);
+    gltf_free(&m);
+}
+
+/* 716 instances of a mesh of 1,000,000 (degenerate) triangles: more than
+ * the scene's int indices allow, refused before anything is allocated. */
+TEST(instancing_total_limit)
+{
+    REQUIRE_GLTF();
+
+    enum {
+        TRIANGLES = 1000000,
+        INSTANCES = 716
+    };
+
+    size_t bin_len = 36 + 3 * TRIANGLES;  // 3 positions, uint8 indices all 0
+    unsigned char *bin = calloc(bin_len, 1);
+    char *json = malloc(INSTANCES * 16 + 1024);
+    CHECK(bin && json);
+    if (!bin || !json) {
+        free(bin);
+        free(json);
+        return;
+    }
+    size_t len = (size_t)sprintf(json, "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[");
+    for (int i = 0; i < INSTANCES; i++) {
+        len += (size_t)sprintf(json + len, "%s%d", i ? "," : "", i);
+    }
+    len += (size_t)sprintf(json + len, "]}],\"nodes\":[");
+    for (int i = 0; i < INSTANCES; i++) {
+        len += (size_t)sprintf(json + len, "%s{\"mesh\":0}", i ? "," : "");
+    }
+    sprintf(
+        json + len,
+        "],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1}]}],"
+        "\"accessors\":[" TRI_POSITIONS
+        ",{\"bufferView\":1,\"componentType\":5121,\"count\":%d,\"type\":\"SCALAR\"}],"
+        "\"bufferViews\":[" TRI_VIEW_POS ",{\"buffer\":0,\"byteOffset\":36,\"byteLength\":%d}],"
+        "\"buffers\":[{\"byteLength\":%zu}]}",
+        3 * TRIANGLES,
+        3 * TRIANGLES,
+        bin_len);
+    const char *path = test_tmp_path("instances.glb");
+    CHECK(write_glb(path, json, bin, bin_len));
+    check_refused(path, "more than");
+    remove(path);
+    free(bin);
+    free(json);
+}
+
 /* --- external files ------------------------------------------------------- */
 
 /* tmpdir/models/model.gltf whose buffer is uri, returning its path. */
@@ -1214,24 +1394,6 @@ TEST(external_buffers_outside)
     check_refused(gltf_with_uri("dir.bin"), "dir.bin");
 }
 
-/* Base64 (RFC 4648) of n bytes into out (4 * ceil(n / 3) + 1 bytes). */
-static void
-base64(const unsigned char *in, size_t n, char *out)
-{
-    static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    for (size_t i = 0; i < n; i += 3) {
-        size_t left = n - i;  // bytes in this group, 3 unless the last
-        uint32_t v = (uint32_t)in[i] << 16;
-        v |= left > 1 ? (uint32_t)in[i + 1] << 8 : 0;
-        v |= left > 2 ? (uint32_t)in[i + 2] : 0;
-        for (size_t k = 0; k < 4; k++) {
-            // A group of b bytes gives b + 1 digits, then '=' padding.
-            *out++ = k <= left ? digits[(v >> (18 - 6 * k)) & 63] : '=';
-        }
-    }
-    *out = '\0';
-}
-
 TEST(data_uri)
 {
     REQUIRE_GLTF();
@@ -1254,16 +1416,17 @@ TEST(size_limit)
 {
     REQUIRE_GLTF();
     const off_t too_big = ((off_t)1 << 30) + 1;
+    mkdir(test_tmp_path("models"), 0755);
     const char *big_bin = test_tmp_path("models/big.bin");
     CHECK(write_tri_bin(big_bin));
     if (truncate(big_bin, too_big) != 0) {
         SKIP("cannot make a sparse file here");
     }
-    check_refused(gltf_with_uri("big.bin"), "limit");
+    check_refused(gltf_with_uri("big.bin"), "allowed");
     const char *big_glb = test_tmp_path("big.glb");
     CHECK(write_bytes(big_glb, "glTF", 4));
     CHECK(truncate(big_glb, too_big) == 0);
-    check_refused(big_glb, "limit");
+    check_refused(big_glb, "allowed");
     remove(big_bin);
     remove(big_glb);
 }
@@ -1375,6 +1538,7 @@ TEST_MAIN(
     TEST_ENTRY(asset_duck),
     TEST_ENTRY(asset_cornell_box),
     TEST_ENTRY(hand_made_triangle_loads),
+    TEST_ENTRY(uint8_indices),
     TEST_ENTRY(empty_and_garbage),
     TEST_ENTRY(wrong_magic),
     TEST_ENTRY(truncated_glb),
@@ -1388,6 +1552,9 @@ TEST_MAIN(
     TEST_ENTRY(deep_node_tree),
     TEST_ENTRY(no_scenes_uses_root_nodes),
     TEST_ENTRY(interleaved_attributes),
+    TEST_ENTRY(deeply_nested_json),
+    TEST_ENTRY(bin_chunk_shared_once),
+    TEST_ENTRY(instancing_total_limit),
     TEST_ENTRY(external_buffers_inside),
     TEST_ENTRY(external_buffers_outside),
     TEST_ENTRY(data_uri),
