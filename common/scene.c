@@ -216,15 +216,18 @@ static bool
 at_line_end(const struct parser *p)
 {
     size_t i = p->pos;
-    bool crlf = p->src[i] == '\r' && (i + 1 == p->len || p->src[i + 1] == '\n');
-    return i == p->len || p->src[i] == '\n' || crlf;
+    if (i == p->len) {
+        return true;
+    }
+    return p->src[i] == '\n' || (p->src[i] == '\r' && (i + 1 == p->len || p->src[i + 1] == '\n'));
 }
 
 /* A word ends at a space, a tab, a comment or the end of the line. */
 static bool
 at_word_end(const struct parser *p)
 {
-    return at_line_end(p) || strchr(" \t#", p->src[p->pos]);
+    return at_line_end(p) || p->src[p->pos] == ' ' || p->src[p->pos] == '\t'
+           || p->src[p->pos] == '#';
 }
 
 static bool
@@ -948,18 +951,23 @@ room_for_mesh(struct parser *p, const struct token *at, size_t n, size_t m)
     if (n > (size_t)(INT_MAX - s->n_vertices) || m > (size_t)(INT_MAX - s->n_triangles)) {
         return fail(p, at, "too many vertices or triangles in the scene (at most %d)", INT_MAX);
     }
-    int vertices = s->n_vertices + (int)n;
-    vec3 *pos = grow(p, at, s->positions, vertices, &p->cap.positions, sizeof *pos);
-    s->positions = pos ? pos : s->positions;
-    vec3 *nrm = pos ? grow(p, at, s->normals, vertices, &p->cap.normals, sizeof *nrm) : NULL;
-    s->normals = nrm ? nrm : s->normals;
-    int triangles = s->n_triangles + (int)m;
-    struct triangle *tri = NULL;
-    if (nrm) {
-        tri = grow(p, at, s->triangles, triangles, &p->cap.triangles, sizeof *tri);
+    vec3 *pos = grow(p, at, s->positions, s->n_vertices + (int)n, &p->cap.positions, sizeof *pos);
+    if (!pos) {
+        return false;
     }
-    s->triangles = tri ? tri : s->triangles;
-    return tri != NULL;
+    s->positions = pos;
+    vec3 *nrm = grow(p, at, s->normals, s->n_vertices + (int)n, &p->cap.normals, sizeof *nrm);
+    if (!nrm) {
+        return false;
+    }
+    s->normals = nrm;
+    int triangles = s->n_triangles + (int)m;
+    struct triangle *tri = grow(p, at, s->triangles, triangles, &p->cap.triangles, sizeof *tri);
+    if (!tri) {
+        return false;
+    }
+    s->triangles = tri;
+    return true;
 }
 
 /* A triangle of zero area is allowed, as in meshes: it is never hit. */
@@ -1119,12 +1127,16 @@ mesh_path(struct parser *p, const struct token *t, char *name, char *path)
         name[n++] = t->text[i];
     }
     name[n] = '\0';
+    if (n == 0) {
+        return fail(p, t, "expected a file name after 'file', got an empty string");
+    }
     const char *slash = strrchr(p->name, '/');
     int dir = name[0] == '/' || !slash ? 0 : (int)(slash - p->name + 1);
     if (n >= MAX_PATH_CHARS - 1 || (size_t)dir + n >= MAX_PATH_CHARS) {
         return fail(p, t, "mesh path too long (at most %d bytes)", MAX_PATH_CHARS - 1);
     }
-    snprintf(path, MAX_PATH_CHARS, "%.*s%s", dir, p->name, name);
+    memcpy(path, p->name, (size_t)dir);
+    memcpy(path + dir, name, n + 1);
     return true;
 }
 

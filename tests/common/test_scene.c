@@ -50,12 +50,12 @@ load_fails(const char *text, char *out, size_t cap)
 
 /* The diagnostic of text, without the trailing newline, e.g.
  * "t.scene:3:5: error: ...". */
-#define CHECK_ERROR(text, expected)                                                            \
-    do {                                                                                       \
-        char got_[1024];                                                                       \
-        CHECK(load_fails(text, got_, sizeof got_));                                            \
-        got_[strcspn(got_, "\n")] = '\0';                                                      \
-        CHECK_MSG(strcmp(got_, expected) == 0, "got \"%s\", expected \"%s\"", got_, expected);  \
+#define CHECK_ERROR(text, expected) \
+    do { \
+        char got_[1024]; \
+        CHECK(load_fails(text, got_, sizeof got_)); \
+        got_[strcspn(got_, "\n")] = '\0'; \
+        CHECK_MSG(strcmp(got_, expected) == 0, "got \"%s\", expected \"%s\"", got_, expected); \
     } while (0)
 
 #define HEADER "camera origin 0 1 3 target 0 1 0 up 0 1 0 fov 40\nimage width 8 height 8\n"
@@ -87,7 +87,7 @@ list_scenes(const char *dir, char **names, int max)
         }
     }
     closedir(d);
-    for (int i = 1; i < n; i++) { // insertion sort: a handful of names
+    for (int i = 1; i < n; i++) {  // insertion sort: a handful of names
         for (int j = i; j > 0 && strcmp(names[j - 1], names[j]) > 0; j--) {
             char *t = names[j];
             names[j] = names[j - 1];
@@ -187,16 +187,18 @@ check_box(const struct scene *s)
     CHECK(vec_eq(s->materials[white].albedo, 0.73, 0.73, 0.73));
     CHECK(vec_eq(s->materials[red].albedo, 0.65, 0.05, 0.05));
     CHECK(vec_eq(s->materials[green].albedo, 0.12, 0.45, 0.15));
+
     static const struct {
         double corner[3], e1[3], e2[3];
         const char *material;
     } walls[] = {
-        {{-1, 0, -1}, {2, 0, 0}, {0, 0, 2}, "white"}, // floor
-        {{-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, "white"}, // ceiling
-        {{-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, "white"}, // back
-        {{-1, 0, -1}, {0, 2, 0}, {0, 0, 2}, "red"},   // left
+        {{-1, 0, -1}, {2, 0, 0}, {0, 0, 2}, "white"},  // floor
+        {{-1, 2, -1}, {2, 0, 0}, {0, 0, 2}, "white"},  // ceiling
+        {{-1, 0, -1}, {2, 0, 0}, {0, 2, 0}, "white"},  // back
+        {{-1, 0, -1}, {0, 2, 0}, {0, 0, 2}, "red"},  // left
         {{1, 0, -1}, {0, 2, 0}, {0, 0, 2}, "green"},  // right
     };
+
     CHECK(s->n_quads == 5);
     for (int i = 0; i < 5; i++) {
         int q = find_quad(s, walls[i].corner, walls[i].e1, walls[i].e2);
@@ -312,7 +314,8 @@ TEST(cornell_specular_area)
         CHECK_NEAR(s.materials[glass].ior, 1.5, 0);
     }
     check_area_light(&s);
-    unsigned want = FEATURE_BIT(FEAT_AREA_LIGHT) | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS);
+    unsigned want =
+        FEATURE_BIT(FEAT_AREA_LIGHT) | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS);
     CHECK(s.features == want);
     check_feature_at(&s, FEAT_MIRROR, "sphere");
     check_feature_at(&s, FEAT_GLASS, "sphere");
@@ -339,7 +342,15 @@ check_bad_scene(const char *relative)
         char expected[1024];
         const char *msg = text + start;
         int msg_len = (int)strcspn(msg, "\r\n");
-        snprintf(expected, sizeof expected, "%s:%d:%d: error: %.*s\n", path, line, col, msg_len, msg);
+        snprintf(
+            expected,
+            sizeof expected,
+            "%s:%d:%d: error: %.*s\n",
+            path,
+            line,
+            col,
+            msg_len,
+            msg);
         struct scene s;
         struct diag err = {.line = 0};
         bool loaded = scene_load(path, &s, &err);
@@ -384,9 +395,12 @@ TEST(empty_file)
 
 TEST(missing_statement_location)
 {
-    // Without a final newline the end of the file is on the last line.
-    CHECK_ERROR(HEADER "# end", "t.scene:3:6: error: missing 'image' statement" + 0 * 0
-        ? "" : "t.scene:3:6: error: missing 'image' statement");
+    // Without a final newline the end of the file is on the last line...
+    CHECK_ERROR(
+        "camera origin 0 1 3 target 0 1 0 up 0 1 0 fov 40\n# end",
+        "t.scene:2:6: error: missing 'image' statement");
+    // ...with one, at the start of the line after it.
+    CHECK_ERROR("image width 1 height 1\r\n", "t.scene:2:1: error: missing 'camera' statement");
 }
 
 /* Binary garbage made at run time: a NUL, control bytes, DEL, broken UTF-8. */
@@ -397,20 +411,22 @@ TEST(garbage_bytes)
         size_t len;
         const char *expected;
     } cases[] = {
-        {HEADER "sphere\0 center", sizeof HEADER + 7, "t.scene:3:7: error: unexpected byte 0x00"},
-        {HEADER "\x02", sizeof HEADER, "t.scene:3:1: error: unexpected byte 0x02"},
-        {HEADER "# \x7f", sizeof HEADER + 2, "t.scene:3:3: error: unexpected byte 0x7f"},
-        {HEADER "ab\rcd\n", sizeof HEADER + 5, "t.scene:3:3: error: unexpected byte 0x0d"},
-        {HEADER "# \xff", sizeof HEADER + 2, "t.scene:3:3: error: unexpected byte 0xff"},
-        {HEADER "# \xc0\x80", sizeof HEADER + 3, "t.scene:3:3: error: unexpected byte 0xc0"},
-        {HEADER "# \xed\xa0\x80", sizeof HEADER + 4, "t.scene:3:3: error: unexpected byte 0xed"},
-        {HEADER "# \xe2\x82", sizeof HEADER + 3, "t.scene:3:3: error: unexpected byte 0xe2"},
+        {HEADER "sphere\0 center", 7, "t.scene:3:7: error: unexpected byte 0x00"},
+        {HEADER "\x02", 1, "t.scene:3:1: error: unexpected byte 0x02"},
+        {HEADER "# \x7f", 3, "t.scene:3:3: error: unexpected byte 0x7f"},
+        {HEADER "ab\rcd\n", 6, "t.scene:3:3: error: unexpected byte 0x0d"},
+        {HEADER "# \xff", 3, "t.scene:3:3: error: unexpected byte 0xff"},
+        {HEADER "# \xc0\x80", 4, "t.scene:3:3: error: unexpected byte 0xc0"},  // overlong
+        {HEADER "# \xed\xa0\x80", 5, "t.scene:3:3: error: unexpected byte 0xed"},  // surrogate
+        {HEADER "# \xe2\x82", 4, "t.scene:3:3: error: unexpected byte 0xe2"},  // cut short
+        {HEADER "# \xf4\x90\x80\x80", 6, "t.scene:3:3: error: unexpected byte 0xf4"},  // > U+10FFFF
     };
+
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         struct scene s;
         struct diag err = {.line = 0};
-        // sizeof HEADER counts its NUL: len covers exactly the bytes written.
-        CHECK(!scene_load_string(cases[i].text, cases[i].len - 1, "t.scene", &s, &err));
+        size_t len = strlen(HEADER) + cases[i].len;  // the text after HEADER may hold a NUL
+        CHECK(!scene_load_string(cases[i].text, len, "t.scene", &s, &err));
         char got[1024];
         format_diag(&err, got, sizeof got);
         got[strcspn(got, "\n")] = '\0';
@@ -426,7 +442,7 @@ TEST(comments_tabs_crlf_utf8)
                        "   \t \r\n"
                        "material caf\xc3\xa9_ok diffuse albedo 1 1 1 # caf\xc3\xa9\r\n"
                        "material white diffuse albedo 0.5 0.5 0.5\r\n"
-                       "sphere center 0 0 0 radius 1 material white"; // no final newline
+                       "sphere center 0 0 0 radius 1 material white";  // no final newline
     struct scene s;
     struct diag err = {.line = 0};
     // A UTF-8 material name is not a valid name: the error column counts it.
@@ -437,22 +453,31 @@ TEST(comments_tabs_crlf_utf8)
                        "image width 8\theight 8#glued comment\r\n"
                        "   \t \r\n"
                        "material white diffuse albedo 0.5 0.5 0.5\r\n"
-                       "sphere center 0 0 0 radius 1 material white"; // no final newline
+                       "sphere center 0 0 0 radius 1 material white";  // no final newline
     CHECK(load_text(good, "t.scene", &s, &err));
     CHECK(s.width == 8 && s.height == 8 && s.n_spheres == 1 && s.n_materials == 1);
     scene_free(&s);
     // Columns: a tab moves to the next multiple of 8, plus 1.
     CHECK_ERROR("\tsphear", "t.scene:1:9: error: unknown keyword 'sphear'");
-    CHECK_ERROR("ab\tsphear", "t.scene:1:9: error: unknown keyword 'sphear'");
+    CHECK_ERROR(
+        "ambient color 1\t2 3 4",
+        "t.scene:1:21: error: too many numbers after 'color', expected 3");
     CHECK_ERROR("1234567\tx", "t.scene:1:1: error: unknown keyword '1234567'");
-    CHECK_ERROR(HEADER "camera\t\tx", "t.scene:3:1: error: duplicate 'camera' statement (first on line 1)");
-    CHECK_ERROR(HEADER WHITE "sphere center 0 0 0\t\tradius x",
-        "t.scene:4:33: error: expected a number after 'radius', got 'x'");
-    CHECK_ERROR(HEADER WHITE "sphere center 0 0 0 radius\r\n",
+    CHECK_ERROR(
+        HEADER "camera\t\tx",
+        "t.scene:3:1: error: duplicate 'camera' statement (first on line 1)");
+    CHECK_ERROR(
+        HEADER WHITE "sphere center 0 0 0\t\tradius x",
+        "t.scene:4:40: error: expected a number after 'radius', got 'x'");
+    CHECK_ERROR(
+        HEADER WHITE "sphere center 0 0 0 radius\r\n",
         "t.scene:4:27: error: expected a number after 'radius', got end of line");
     // A UTF-8 character counts one column.
-    CHECK_ERROR("# \xc3\xa9\n\xc3\xa9t\xc3\xa9 x", "t.scene:2:1: error: unknown keyword '\xc3\xa9t\xc3\xa9'");
-    CHECK_ERROR("mesh file \"\xc3\xa9\" material nope",
+    CHECK_ERROR(
+        "# \xc3\xa9\n\xc3\xa9t\xc3\xa9 x",
+        "t.scene:2:1: error: unknown keyword '\xc3\xa9t\xc3\xa9'");
+    CHECK_ERROR(
+        "mesh file \"\xc3\xa9\" material nope",
         "t.scene:1:24: error: unknown material 'nope' (none is defined before it)");
 }
 
@@ -476,25 +501,26 @@ TEST(defaults_and_features)
     CHECK(s.features == 0 && s.n_point_lights == 0 && s.n_area_lights == 0);
     CHECK(strcmp(s.path, "t") == 0);
     scene_free(&s);
-    const char *text = HEADER "background color 0 0 0\n"                                   // 3
-                              "ambient color 0.1 0 0\n"                                     // 4
-                              "material m mirror reflectance 1 1 1\n"                       // 5
-                              "material g glass ior 0.75\n"                                 // 6
-                              "material b blend albedo 0.5 0.5 0.5 reflectance 0.5 0 0.2\n" // 7
-                              "material c checker albedo 1 1 1 albedo2 0 0 0 size 0.5\n"    // 8
-                              "material unused mirror reflectance 0 0 0\n"                  // 9
-                              "  quad corner 0 0 0 edge1 1 0 0 edge2 1 0 0 material m\n"    // 10
-                              "triangle v0 0 0 0 v1 1 0 0 v2 0 1 0 material g\n"            // 11
-                              "sphere center 0 0 0 radius 1 material c\n"                   // 12
-                              "sphere center 0 0 0 radius 1 material b\n"                   // 13
-                              "sphere center 0 0 0 radius 1 material m\n"                   // 14
-                              "point_light position 0 1 0 intensity 0 0 0\n"                // 15
+    const char *text = HEADER "background color 0 0 0\n"  // 3
+                              "ambient color 0.1 0 0\n"  // 4
+                              "material m mirror reflectance 1 1 1\n"  // 5
+                              "material g glass ior 0.75\n"  // 6
+                              "material b blend albedo 0.5 0.5 0.5 reflectance 0.5 0 0.2\n"  // 7
+                              "material c checker albedo 1 1 1 albedo2 0 0 0 size 0.5\n"  // 8
+                              "material unused mirror reflectance 0 0 0\n"  // 9
+                              "  quad corner 0 0 0 edge1 1 0 0 edge2 1 0 0 material m\n"  // 10
+                              "triangle v0 0 0 0 v1 1 0 0 v2 0 1 0 material g\n"  // 11
+                              "sphere center 0 0 0 radius 1 material c\n"  // 12
+                              "sphere center 0 0 0 radius 1 material b\n"  // 13
+                              "sphere center 0 0 0 radius 1 material m\n"  // 14
+                              "point_light position 0 1 0 intensity 0 0 0\n"  // 15
                               "\tarea_light corner 0 0 0 edge1 0 0 1 edge2 1 0 0 radiance 1 1 1\n";
     CHECK(load_text(text, "t", &s, &err));
     unsigned want = FEATURE_BIT(FEAT_AMBIENT) | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS)
-        | FEATURE_BIT(FEAT_CHECKER) | FEATURE_BIT(FEAT_BLEND) | FEATURE_BIT(FEAT_POINT_LIGHT)
-        | FEATURE_BIT(FEAT_AREA_LIGHT);
+                    | FEATURE_BIT(FEAT_CHECKER) | FEATURE_BIT(FEAT_BLEND)
+                    | FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_AREA_LIGHT);
     CHECK(s.features == want);
+
     static const struct {
         enum feature f;
         int line, col;
@@ -507,10 +533,15 @@ TEST(defaults_and_features)
         {FEAT_POINT_LIGHT, 15, 1},
         {FEAT_AREA_LIGHT, 16, 9},
     };
+
     for (size_t i = 0; i < sizeof at / sizeof at[0]; i++) {
         struct src_loc loc = s.feature_loc[at[i].f];
-        CHECK_MSG(loc.line == at[i].line && loc.col == at[i].col, "feature %d at %d:%d", (int)at[i].f,
-            loc.line, loc.col);
+        CHECK_MSG(
+            loc.line == at[i].line && loc.col == at[i].col,
+            "feature %d at %d:%d",
+            (int)at[i].f,
+            loc.line,
+            loc.col);
     }
     CHECK(vec_eq(s.ambient, 0.1, 0, 0));
     // Material values land in their fields.
@@ -540,13 +571,17 @@ TEST(numbers)
     static const char *const good[] = {"1", "+1", ".5", "1.", "1e-3", "1E+2", "0.000001", "007"};
     for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
         char text[512];
-        snprintf(text, sizeof text, HEADER WHITE "sphere center 0 0 0 radius %s material white\n",
+        snprintf(
+            text,
+            sizeof text,
+            HEADER WHITE "sphere center 0 0 0 radius %s material white\n",
             good[i]);
         struct scene s;
         struct diag err = {.line = 0};
         CHECK_MSG(load_text(text, "t", &s, &err), "radius %s: %s", good[i], err.msg);
         scene_free(&s);
     }
+
     static const struct {
         const char *number, *message;
     } bad[] = {
@@ -563,100 +598,154 @@ TEST(numbers)
         {"-1e999", "number '-1e999' is out of range"},
         {"1e-999", "number '1e-999' is out of range"},
     };
+
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         char text[512];
         char expected[512];
-        snprintf(text, sizeof text, HEADER WHITE "sphere center 0 0 0 radius %s material white\n",
+        snprintf(
+            text,
+            sizeof text,
+            HEADER WHITE "sphere center 0 0 0 radius %s material white\n",
             bad[i].number);
         snprintf(expected, sizeof expected, "t.scene:4:28: error: %s", bad[i].message);
         CHECK_ERROR(text, expected);
     }
     // The range of the real type, whichever it is.
     if (sizeof(real) == sizeof(float)) {
-        CHECK_ERROR(HEADER WHITE "sphere center 1e39 0 0 radius 1 material white",
+        CHECK_ERROR(
+            HEADER WHITE "sphere center 1e39 0 0 radius 1 material white",
             "t.scene:4:15: error: number '1e39' is out of range");
     } else {
-        CHECK_ERROR(HEADER WHITE "sphere center 1e39 0 0 radius 0 material white",
-            "t.scene:4:32: error: radius must be > 0, got 0");
+        CHECK_ERROR(
+            HEADER WHITE "sphere center 1e39 0 0 radius 0 material white",
+            "t.scene:4:31: error: radius must be > 0, got 0");
     }
     // Integers.
-    CHECK_ERROR("image width 99999999999999999999999 height 1",
+    CHECK_ERROR(
+        "image width 99999999999999999999999 height 1",
         "t.scene:1:13: error: width must be in [1, 16384] pixels, got 99999999999999999999999");
-    CHECK_ERROR("image width 0 height 1", "t.scene:1:13: error: width must be in [1, 16384] pixels, got 0");
-    CHECK_ERROR("image width 1e3 height 1", "t.scene:1:13: error: expected an integer after 'width', got '1e3'");
-    CHECK_ERROR("image width - height 1", "t.scene:1:13: error: expected an integer after 'width', got '-'");
+    CHECK_ERROR(
+        "image width 0 height 1",
+        "t.scene:1:13: error: width must be in [1, 16384] pixels, got 0");
+    CHECK_ERROR(
+        "image width 1e3 height 1",
+        "t.scene:1:13: error: expected an integer after 'width', got '1e3'");
+    CHECK_ERROR(
+        "image width - height 1",
+        "t.scene:1:13: error: expected an integer after 'width', got '-'");
 }
 
 TEST(messages)
 {
     // Tokens are quoted, cut when long.
-    CHECK_ERROR("abcdefghijabcdefghijabcdefghijabcdefghijabcdefghij",
+    CHECK_ERROR(
+        "abcdefghijabcdefghijabcdefghijabcdefghijabcdefghij",
         "t.scene:1:1: error: unknown keyword 'abcdefghijabcdefghijabcdefghijabcdefghij...'");
     CHECK_ERROR("\"camera\"", "t.scene:1:1: error: unknown keyword '\"camera\"'");
-    CHECK_ERROR("camera origin 0 1 3 target 0 1 0 up 0 1 0 fov 40 fov 30",
-        "t.scene:1:51: error: duplicate field 'fov' in 'camera'");
-    CHECK_ERROR("camera origin 0 1 3 target 0 1 0 up 0 1 0 fov 40 zoom 2",
-        "t.scene:1:51: error: unknown field 'zoom' in 'camera' (expected origin, target, up or fov)");
-    CHECK_ERROR("camera origin 0 1 3 up 0 1 0 fov 40",
+    CHECK_ERROR(
+        "camera origin 0 1 3 target 0 1 0 up 0 1 0 fov 40 fov 30",
+        "t.scene:1:50: error: duplicate field 'fov' in 'camera'");
+    CHECK_ERROR(
+        "camera origin 0 1 3 target 0 1 0 up 0 1 0 fov 40 zoom 2",
+        "t.scene:1:50: error: unknown field 'zoom' in 'camera' (expected origin, target, up or fov)");
+    CHECK_ERROR(
+        "camera origin 0 1 3 up 0 1 0 fov 40",
         "t.scene:1:1: error: missing field 'target' in 'camera'");
-    CHECK_ERROR("ambient color 1 1 1 1", "t.scene:1:21: error: too many numbers after 'color', expected 3");
+    CHECK_ERROR(
+        "ambient color 1 1 1 1",
+        "t.scene:1:21: error: too many numbers after 'color', expected 3");
     CHECK_ERROR("ambient\n", "t.scene:1:1: error: missing field 'color' in 'ambient'");
-    CHECK_ERROR("background color 0 0 -1", "t.scene:1:22: error: color must be >= 0 per component, got -1");
-    CHECK_ERROR("material", "t.scene:1:9: error: expected a material name after 'material', got end of line");
-    CHECK_ERROR("material x", "t.scene:1:11: error: expected a material kind (diffuse, mirror, glass, blend or checker) after 'x', got end of line");
-    CHECK_ERROR("material x diffuse", "t.scene:1:1: error: missing field 'albedo' in diffuse material 'x'");
-    CHECK_ERROR("material x mirror reflectance 1 1 1.01",
+    CHECK_ERROR(
+        "background color 0 0 -1",
+        "t.scene:1:22: error: color must be >= 0 per component, got -1");
+    CHECK_ERROR(
+        "material",
+        "t.scene:1:9: error: expected a material name after 'material', got end of line");
+    CHECK_ERROR(
+        "material x",
+        "t.scene:1:11: error: expected a material kind (diffuse, mirror, glass, blend or checker) after 'x', got end of line");
+    CHECK_ERROR(
+        "material x diffuse",
+        "t.scene:1:1: error: missing field 'albedo' in diffuse material 'x'");
+    CHECK_ERROR(
+        "material x mirror reflectance 1 1 1.01",
         "t.scene:1:35: error: reflectance must be in [0, 1] per component, got 1.01");
-    CHECK_ERROR("material x checker albedo 1 1 1 albedo2 0 0 0",
+    CHECK_ERROR(
+        "material x checker albedo 1 1 1 albedo2 0 0 0",
         "t.scene:1:1: error: missing field 'size' in checker material 'x'");
-    CHECK_ERROR("material _a-2 diffuse albedo 1 1 1 albedo 1 1 1",
-        "t.scene:1:37: error: duplicate field 'albedo' in diffuse material '_a-2'");
+    CHECK_ERROR(
+        "material _a-2 diffuse albedo 1 1 1 albedo 1 1 1",
+        "t.scene:1:36: error: duplicate field 'albedo' in diffuse material '_a-2'");
     char long_name[128];
     snprintf(long_name, sizeof long_name, "material %064d diffuse albedo 1 1 1", 0);
     long_name[9] = 'a';
-    CHECK_ERROR(long_name, "t.scene:1:10: error: material name 'a000000000000000000000000000000000000000...' is longer than 63");
-    CHECK_ERROR("sphere center 0 0 0 radius 1 material \"white\"",
-        "t.scene:1:40: error: expected a material name after 'material', got '\"white\"'");
-    CHECK_ERROR("mesh file", "t.scene:1:10: error: expected a file name after 'file', got end of line");
-    CHECK_ERROR("mesh file \"a\"b", "t.scene:1:14: error: expected a space after the closing quote");
+    CHECK_ERROR(
+        long_name,
+        "t.scene:1:10: error: material name 'a000000000000000000000000000000000000000...' is longer than 63");
+    CHECK_ERROR(
+        "sphere center 0 0 0 radius 1 material \"white\"",
+        "t.scene:1:39: error: expected a material name after 'material', got '\"white\"'");
+    CHECK_ERROR(
+        "material m diffuse albedo 1 1 1\nmesh file \"\" material m",
+        "t.scene:2:11: error: expected a file name after 'file', got an empty string");
+    CHECK_ERROR(
+        "mesh file",
+        "t.scene:1:10: error: expected a file name after 'file', got end of line");
+    CHECK_ERROR(
+        "mesh file \"a\"b",
+        "t.scene:1:14: error: expected a space after the closing quote");
     // Materials are defined before use; a long list is cut.
-    CHECK_ERROR(HEADER "sphere center 0 0 0 radius 1 material white\n" WHITE,
+    CHECK_ERROR(
+        HEADER "sphere center 0 0 0 radius 1 material white\n" WHITE,
         "t.scene:3:39: error: unknown material 'white' (none is defined before it)");
-    CHECK_ERROR(HEADER "material a diffuse albedo 0 0 0\nmaterial b diffuse albedo 0 0 0\n"
-                       "material c diffuse albedo 0 0 0\nmaterial d diffuse albedo 0 0 0\n"
-                       "material e diffuse albedo 0 0 0\nmaterial f diffuse albedo 0 0 0\n"
-                       "material g diffuse albedo 0 0 0\nquad material h",
-        "t.scene:10:15: error: unknown material 'h' (defined materials: a, b, c, d, e, f, ...)");
+    CHECK_ERROR(
+        HEADER "material a diffuse albedo 0 0 0\nmaterial b diffuse albedo 0 0 0\n"
+               "material c diffuse albedo 0 0 0\nmaterial d diffuse albedo 0 0 0\n"
+               "material e diffuse albedo 0 0 0\nmaterial f diffuse albedo 0 0 0\n"
+               "material g diffuse albedo 0 0 0\n"
+               "quad corner 0 0 0 edge1 1 0 0 edge2 0 1 0 material h",
+        "t.scene:10:52: error: unknown material 'h' (defined materials: a, b, c, d, e, f, ...)");
     // Errors stop at the first one, in reading order.
-    CHECK_ERROR("image width 0 height x", "t.scene:1:13: error: width must be in [1, 16384] pixels, got 0");
+    CHECK_ERROR(
+        "image width 0 height x",
+        "t.scene:1:13: error: width must be in [1, 16384] pixels, got 0");
     CHECK_ERROR("sphear\n\x01", "t.scene:1:1: error: unknown keyword 'sphear'");
 }
 
 TEST(camera_checks)
 {
-    CHECK_ERROR("camera origin 0 0 0 target 1 1 1 up 2 2 2 fov 40",
-        "t.scene:1:35: error: up must not be parallel to the view direction (target - origin)");
-    CHECK_ERROR("camera origin 0 0 0 target 1e300 0 0 up -1e-300 0 0 fov 40",
-        "t.scene:1:39: error: up must not be parallel to the view direction (target - origin)");
-    CHECK_ERROR("camera origin 0 0 0 target 0 0 -1 up 0 1 0 fov 179.9 fov 1",
-        "t.scene:1:56: error: duplicate field 'fov' in 'camera'");
+    CHECK_ERROR(
+        "camera origin 0 0 0 target 1 1 1 up 2 2 2 fov 40",
+        "t.scene:1:34: error: up must not be parallel to the view direction (target - origin)");
+    CHECK_ERROR(
+        "camera origin 0 0 0 target 1e30 0 0 up -1e-30 0 0 fov 40",
+        "t.scene:1:37: error: up must not be parallel to the view direction (target - origin)");
+    CHECK_ERROR(
+        "camera origin 0 0 0 target 0 0 -1 up 0 1 0 fov 179.9 fov 1",
+        "t.scene:1:54: error: duplicate field 'fov' in 'camera'");
     struct scene s;
     struct diag err = {.line = 0};
     // Nearly straight down is fine as long as up is not parallel.
-    CHECK(load_text("camera origin 0 5 0 target 0 0 0 up 0 0 -1 fov 0.001\nimage width 1 height 16384",
-        "t", &s, &err));
+    CHECK(load_text(
+        "camera origin 0 5 0 target 0 0 0 up 0 0 -1 fov 0.001\nimage width 1 height 16384",
+        "t",
+        &s,
+        &err));
     CHECK(s.width == 1 && s.height == 16384);
     scene_free(&s);
 }
 
 TEST(area_light_checks)
 {
-    CHECK_ERROR("area_light corner 0 0 0 edge1 0 0 0 edge2 1 0 0 radiance 1 1 1",
+    CHECK_ERROR(
+        "area_light corner 0 0 0 edge1 0 0 0 edge2 1 0 0 radiance 1 1 1",
         "t.scene:1:1: error: area_light has zero area (edge1 and edge2 are parallel or zero)");
-    CHECK_ERROR("area_light corner 0 0 0 edge1 1 0 0 edge2 0 0 1 radiance 1 1 -1",
-        "t.scene:1:64: error: radiance must be >= 0 per component, got -1");
+    CHECK_ERROR(
+        "area_light corner 0 0 0 edge1 1 0 0 edge2 0 0 1 radiance 1 1 -1",
+        "t.scene:1:62: error: radiance must be >= 0 per component, got -1");
     if (sizeof(real) == sizeof(double)) {
-        CHECK_ERROR("area_light corner 0 0 0 edge1 1e200 0 0 edge2 0 0 1e200 radiance 1 1 1",
+        CHECK_ERROR(
+            "area_light corner 0 0 0 edge1 1e200 0 0 edge2 0 0 1e200 radiance 1 1 1",
             "t.scene:1:1: error: area_light is too large (its area is not a finite number)");
     }
 }
@@ -670,8 +759,12 @@ TEST(too_many_materials)
         used += (size_t)snprintf(text + used, cap - used, "material m%d diffuse albedo 1 1 1\n", i);
     }
     char expected[128];
-    snprintf(expected, sizeof expected, "t.scene:%d:1: error: too many materials (at most %d)",
-        SCENE_MAX_MATERIALS + 3, SCENE_MAX_MATERIALS);
+    snprintf(
+        expected,
+        sizeof expected,
+        "t.scene:%d:1: error: too many materials (at most %d)",
+        SCENE_MAX_MATERIALS + 3,
+        SCENE_MAX_MATERIALS);
     CHECK_ERROR(text, expected);
     free(text);
 }
@@ -685,7 +778,11 @@ TEST(file_errors)
     CHECK(!scene_load(missing, &s, &err));
     format_diag(&err, got, sizeof got);
     char expected[1024];
-    snprintf(expected, sizeof expected, "%s: error: cannot open: No such file or directory\n", missing);
+    snprintf(
+        expected,
+        sizeof expected,
+        "%s: error: cannot open: No such file or directory\n",
+        missing);
     CHECK_MSG(strcmp(got, expected) == 0, "got %s", got);
     CHECK(!scene_load(test_tmpdir(), &s, &err));
     CHECK(err.line == 0 && strstr(err.msg, "cannot read") == err.msg);
@@ -695,14 +792,24 @@ TEST(file_errors)
 TEST(mesh_paths)
 {
     char got[1024];
-    CHECK(load_fails(HEADER WHITE "mesh file \"my \\\"model\\\".glb\" material white", got, sizeof got));
-    CHECK_MSG(strcmp(got, "t.scene:4:11: error: cannot load mesh 'my \"model\".glb': cannot open: No such file or directory\n") == 0, "%s", got);
+    CHECK(load_fails(
+        HEADER WHITE "mesh file \"my \\\"model\\\".glb\" material white",
+        got,
+        sizeof got));
+    CHECK_MSG(
+        strcmp(
+            got,
+            "t.scene:4:11: error: cannot load mesh 'my \"model\".glb': cannot open: No such file or directory\n")
+            == 0,
+        "%s",
+        got);
     // A file beside the scene (not in the current directory) is opened.
     const char *mesh = test_tmp_path("not-a-model.glb");
     CHECK(test_write_file(mesh, "not glTF"));
     struct scene s;
     struct diag err = {.line = 0};
-    const char *text = HEADER WHITE "mesh file not-a-model.glb material white scale 2 translate 1 2 3";
+    const char *text =
+        HEADER WHITE "mesh file not-a-model.glb material white scale 2 translate 1 2 3";
     CHECK(!load_text(text, test_tmp_path("x.scene"), &s, &err));
     CHECK_MSG(strstr(err.msg, "cannot load mesh 'not-a-model.glb': ") == err.msg, "%s", err.msg);
     CHECK_MSG(strstr(err.msg, "cannot open") == NULL, "%s", err.msg);
@@ -711,18 +818,24 @@ TEST(mesh_paths)
         CHECK_MSG(strstr(err.msg, "install libtinygltf-dev and rebuild") != NULL, "%s", err.msg);
     }
     // Scale takes 1 or 3 numbers.
-    CHECK_ERROR(HEADER WHITE "mesh file a.glb material white scale 1 2",
+    CHECK_ERROR(
+        HEADER WHITE "mesh file a.glb material white scale 1 2",
         "t.scene:4:41: error: expected 3 numbers after 'scale', got end of line");
-    CHECK_ERROR(HEADER WHITE "mesh file a.glb material white scale 1 nan 1",
+    CHECK_ERROR(
+        HEADER WHITE "mesh file a.glb material white scale 1 nan 1",
         "t.scene:4:40: error: expected 3 finite numbers after 'scale', got 'nan'");
-    CHECK_ERROR(HEADER WHITE "mesh file a.glb material white scale x",
+    CHECK_ERROR(
+        HEADER WHITE "mesh file a.glb material white scale x",
         "t.scene:4:38: error: expected 1 or 3 numbers after 'scale', got 'x'");
-    CHECK_ERROR(HEADER WHITE "mesh file a.glb material white scale 0",
+    CHECK_ERROR(
+        HEADER WHITE "mesh file a.glb material white scale 0",
         "t.scene:4:38: error: scale must be non-zero, got 0");
-    CHECK_ERROR(HEADER WHITE "mesh file a.glb material white scale 1 2 3 4",
+    CHECK_ERROR(
+        HEADER WHITE "mesh file a.glb material white scale 1 2 3 4",
         "t.scene:4:44: error: too many numbers after 'scale', expected 1 or 3");
-    CHECK_ERROR(HEADER WHITE "mesh file a.glb material white rotate 0 1 0",
-        "t.scene:4:45: error: expected 4 numbers after 'rotate', got end of line");
+    CHECK_ERROR(
+        HEADER WHITE "mesh file a.glb material white rotate 0 1 0",
+        "t.scene:4:44: error: expected 4 numbers after 'rotate', got end of line");
 }
 
 static void
@@ -755,21 +868,38 @@ write_triangle_glb(const char *path)
         "\"min\":[0,0,0],\"max\":[1,1,1]},"
         "{\"bufferView\":0,\"byteOffset\":36,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}]}";
     // A triangle in a tilted plane, its normal (0, -1, 1)/sqrt(2) at every vertex.
-    static const float data[18] = {0, 0, 0, 1, 0, 0, 0, 1, 1, 0, -0.70710678f, 0.70710678f, 0,
-        -0.70710678f, 0.70710678f, 0, -0.70710678f, 0.70710678f};
+    static const float data[18] = {
+        0,
+        0,
+        0,
+        1,
+        0,
+        0,
+        0,
+        1,
+        1,
+        0,
+        -0.70710678f,
+        0.70710678f,
+        0,
+        -0.70710678f,
+        0.70710678f,
+        0,
+        -0.70710678f,
+        0.70710678f};
     size_t json_len = (sizeof json - 1 + 3) / 4 * 4;
     size_t total = 12 + 8 + json_len + 8 + sizeof data;
     unsigned char glb[1024];
     memset(glb, ' ', sizeof glb);
-    put_u32(glb, 0x46546C67); // "glTF"
+    put_u32(glb, 0x46546C67);  // "glTF"
     put_u32(glb + 4, 2);
     put_u32(glb + 8, (uint32_t)total);
     put_u32(glb + 12, (uint32_t)json_len);
-    put_u32(glb + 16, 0x4E4F534A); // "JSON"
+    put_u32(glb + 16, 0x4E4F534A);  // "JSON"
     memcpy(glb + 20, json, sizeof json - 1);
     unsigned char *bin = glb + 20 + json_len;
     put_u32(bin, sizeof data);
-    put_u32(bin + 4, 0x004E4942); // "BIN"
+    put_u32(bin + 4, 0x004E4942);  // "BIN"
     for (int i = 0; i < 18; i++) {
         put_f32(bin + 8 + 4 * i, data[i]);
     }
@@ -796,15 +926,20 @@ TEST(mesh_transform)
     }
     CHECK(s.n_vertices == 6 && s.n_triangles == 2);
     CHECK(s.features == FEATURE_BIT(FEAT_MESH));
-    CHECK(s.feature_loc[FEAT_MESH].line == 4 && s.feature_loc[FEAT_MESH].col == 1);
+    CHECK(s.feature_loc[FEAT_MESH].line == 5 && s.feature_loc[FEAT_MESH].col == 1);
     // Scale (2, 3, 4), then 90 degrees about +y (x -> -z, z -> x), then (1, 2, 3).
     CHECK(vec_eq(s.positions[3], 1, 2, 3));
     CHECK(vec_eq(s.positions[4], 1, 2, 1));
     CHECK(vec_eq(s.positions[5], 5, 5, 3));
     // Normals by the inverse transpose: (0, -1/3, 1/4) -> (0, -0.8, 0.6), rotated.
     for (int i = 3; i < 6; i++) {
-        CHECK_MSG(vec_eq(s.normals[i], 0.6, -0.8, 0), "normal %d = %g %g %g", i, s.normals[i].x,
-            s.normals[i].y, s.normals[i].z);
+        CHECK_MSG(
+            vec_eq(s.normals[i], 0.6, -0.8, 0),
+            "normal %d = %g %g %g",
+            i,
+            s.normals[i].x,
+            s.normals[i].y,
+            s.normals[i].z);
     }
     const struct triangle *t = &s.triangles[1];
     CHECK(t->v[0] == 3 && t->v[1] == 4 && t->v[2] == 5 && t->smooth && t->material == 0);
@@ -856,10 +991,14 @@ TEST(fuzz)
         if (!text) {
             continue;
         }
+        // Copies of exactly the bytes given, so that ASan sees any read past them.
         for (size_t cut = 0; cut <= len; cut++) {
-            load_any(text, cut);
+            char *prefix = malloc(cut + 1);
+            memcpy(prefix, text, cut);
+            load_any(prefix, cut);
+            free(prefix);
         }
-        char *copy = malloc(len + 1);
+        char *copy = malloc(len);
         for (int round = 0; round < 2000 && len > 0; round++) {
             memcpy(copy, text, len);
             int changes = 1 + (int)(next_random(&state) % 4);
@@ -876,10 +1015,24 @@ TEST(fuzz)
     free_names(names, n);
 }
 
-TEST_MAIN(TEST_ENTRY(every_scene_loads), TEST_ENTRY(cornell_diffuse_point),
-    TEST_ENTRY(cornell_diffuse_area), TEST_ENTRY(cornell_specular_area), TEST_ENTRY(bad_scenes),
-    TEST_ENTRY(empty_file), TEST_ENTRY(missing_statement_location), TEST_ENTRY(garbage_bytes),
-    TEST_ENTRY(comments_tabs_crlf_utf8), TEST_ENTRY(free_zero_and_twice),
-    TEST_ENTRY(defaults_and_features), TEST_ENTRY(numbers), TEST_ENTRY(messages),
-    TEST_ENTRY(camera_checks), TEST_ENTRY(area_light_checks), TEST_ENTRY(too_many_materials),
-    TEST_ENTRY(file_errors), TEST_ENTRY(mesh_paths), TEST_ENTRY(mesh_transform), TEST_ENTRY(fuzz))
+TEST_MAIN(
+    TEST_ENTRY(every_scene_loads),
+    TEST_ENTRY(cornell_diffuse_point),
+    TEST_ENTRY(cornell_diffuse_area),
+    TEST_ENTRY(cornell_specular_area),
+    TEST_ENTRY(bad_scenes),
+    TEST_ENTRY(empty_file),
+    TEST_ENTRY(missing_statement_location),
+    TEST_ENTRY(garbage_bytes),
+    TEST_ENTRY(comments_tabs_crlf_utf8),
+    TEST_ENTRY(free_zero_and_twice),
+    TEST_ENTRY(defaults_and_features),
+    TEST_ENTRY(numbers),
+    TEST_ENTRY(messages),
+    TEST_ENTRY(camera_checks),
+    TEST_ENTRY(area_light_checks),
+    TEST_ENTRY(too_many_materials),
+    TEST_ENTRY(file_errors),
+    TEST_ENTRY(mesh_paths),
+    TEST_ENTRY(mesh_transform),
+    TEST_ENTRY(fuzz))
