@@ -321,7 +321,12 @@ no_result(void)
 
 struct stattest_result
 stattest_t_test_estimates(
-    double a, double var_a, double dof_a, double b, double var_b, double dof_b)
+    double a,
+    double var_a,
+    double dof_a,
+    double b,
+    double var_b,
+    double dof_b)
 {
     double v = var_a + var_b;
     if (!(isfinite(a) && isfinite(b) && var_a >= 0 && var_b >= 0 && isfinite(v))) {
@@ -354,7 +359,12 @@ stattest_t_test_one_sample(double mean, double variance, int64_t n, double mu0)
 
 struct stattest_result
 stattest_t_test_welch(
-    double mean1, double variance1, int64_t n1, double mean2, double variance2, int64_t n2)
+    double mean1,
+    double variance1,
+    int64_t n1,
+    double mean2,
+    double variance2,
+    int64_t n2)
 {
     if (n1 < 2 || n2 < 2) {
         return no_result();

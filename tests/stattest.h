@@ -86,21 +86,31 @@ struct stattest_result {
  * Welch-Satterthwaite's.  The building block of the two tests below and of
  * a render-against-reference test, where the reference has its own SE. */
 struct stattest_result stattest_t_test_estimates(
-    double a, double var_a, double dof_a, double b, double var_b, double dof_b);
+    double a,
+    double var_a,
+    double dof_a,
+    double b,
+    double var_b,
+    double dof_b);
 
 /* One-sample t-test: is the mean of n samples (sample variance `variance`)
  * equal to mu0? */
-struct stattest_result stattest_t_test_one_sample(
-    double mean, double variance, int64_t n, double mu0);
+struct stattest_result
+stattest_t_test_one_sample(double mean, double variance, int64_t n, double mu0);
 
 /* Welch's two-sample t-test (unequal variances): are the means equal? */
 struct stattest_result stattest_t_test_welch(
-    double mean1, double variance1, int64_t n1, double mean2, double variance2, int64_t n2);
+    double mean1,
+    double variance1,
+    int64_t n1,
+    double mean2,
+    double variance2,
+    int64_t n2);
 
 /* The same tests straight from two running accumulators. */
-struct stattest_result stattest_t_test_welford_one_sample(
-    const struct stattest_welford *w, double mu0);
-struct stattest_result stattest_t_test_welford_welch(
-    const struct stattest_welford *w1, const struct stattest_welford *w2);
+struct stattest_result
+stattest_t_test_welford_one_sample(const struct stattest_welford *w, double mu0);
+struct stattest_result
+stattest_t_test_welford_welch(const struct stattest_welford *w1, const struct stattest_welford *w2);
 
 #endif /* STATTEST_H */

@@ -13,7 +13,7 @@
 #define PI_D 3.14159265358979323846
 
 /* |got - want| <= rel * |want|, for values spanning many magnitudes. */
-#define CHECK_REL(got, want, rel) CHECK_NEAR((got), (want), (rel) * fabs((double)(want)))
+#define CHECK_REL(got, want, rel) CHECK_NEAR((got), (want), (rel)*fabs((double)(want)))
 
 TEST(welford_matches_two_pass)
 {
@@ -58,7 +58,7 @@ TEST(incbeta_closed_forms_and_tables)
     CHECK_REL(stattest_incbeta(1, 4.25, 0.6), 1 - pow(0.4, 4.25), 1e-13);
     CHECK_NEAR(stattest_incbeta(17, 17, 0.5), 0.5, 1e-14);
     CHECK_REL(stattest_incbeta(2.5, 3.5, 0.3), 0.2967529892956663986, 1e-12); /* mpmath */
-    CHECK_REL(stattest_incbeta(50, 60, 0.4), 0.1247068583431002620, 1e-10);  /* mpmath */
+    CHECK_REL(stattest_incbeta(50, 60, 0.4), 0.1247068583431002620, 1e-10); /* mpmath */
     CHECK(stattest_incbeta(2, 3, 0) == 0);
     CHECK(stattest_incbeta(2, 3, 1) == 1);
     CHECK(isnan(stattest_incbeta(-1, 3, 0.5)));
@@ -87,11 +87,11 @@ TEST(t_distribution_tables)
     /* Table quantiles: t_{0.975, 10} = 2.228138852, t_{0.995, 30} = 2.749995652. */
     CHECK_NEAR(stattest_t_pvalue(2.228138852, 10), 0.05, 1e-9);
     CHECK_NEAR(stattest_t_cdf(2.749995652, 30), 0.995, 1e-9);
-    CHECK_REL(stattest_t_pvalue(0.5, 3), 0.6514479648481509944, 1e-12);      /* mpmath */
-    CHECK_REL(stattest_t_pvalue(10, 5), 1.709475757429635907e-4, 1e-10);     /* mpmath */
-    CHECK_REL(stattest_t_pvalue(50, 4), 9.574453656969698410e-7, 1e-9);      /* mpmath */
-    CHECK_REL(stattest_t_pvalue(1.5, 2.5), 0.2478364530862962611, 1e-12);    /* mpmath */
-    CHECK_REL(stattest_t_pvalue(3, 1000), 2.766709044238192464e-3, 1e-9);    /* mpmath */
+    CHECK_REL(stattest_t_pvalue(0.5, 3), 0.6514479648481509944, 1e-12); /* mpmath */
+    CHECK_REL(stattest_t_pvalue(10, 5), 1.709475757429635907e-4, 1e-10); /* mpmath */
+    CHECK_REL(stattest_t_pvalue(50, 4), 9.574453656969698410e-7, 1e-9); /* mpmath */
+    CHECK_REL(stattest_t_pvalue(1.5, 2.5), 0.2478364530862962611, 1e-12); /* mpmath */
+    CHECK_REL(stattest_t_pvalue(3, 1000), 2.766709044238192464e-3, 1e-9); /* mpmath */
     CHECK(stattest_t_pvalue(0, 7) == 1);
     CHECK(stattest_t_pvalue(INFINITY, 7) == 0);
     CHECK(isnan(stattest_t_pvalue(1, 0)));
@@ -114,14 +114,14 @@ TEST(chi_square)
     CHECK_NEAR(stattest_chi2_cdf(18.30703805, 10), 0.95, 1e-9);
     CHECK_NEAR(stattest_chi2_cdf(7.814727903, 3), 0.95, 1e-9);
     CHECK_REL(stattest_chi2_pvalue(103.4, 63), 1.009227091461469612e-3, 1e-10); /* mpmath */
-    CHECK_REL(stattest_chi2_pvalue(200, 100), 1.178450072097942245e-8, 1e-9);   /* mpmath */
-    CHECK_REL(stattest_chi2_cdf(0.5, 4), 2.649902116074391469e-2, 1e-12);       /* mpmath */
+    CHECK_REL(stattest_chi2_pvalue(200, 100), 1.178450072097942245e-8, 1e-9); /* mpmath */
+    CHECK_REL(stattest_chi2_cdf(0.5, 4), 2.649902116074391469e-2, 1e-12); /* mpmath */
     CHECK_REL(stattest_chi2_pvalue(1000, 10), 1.870290720915949696e-208, 1e-9); /* mpmath */
     /* A 101 x 101 histogram test has about 10^4 degrees of freedom. */
     CHECK_REL(stattest_chi2_pvalue(10300, 10200), 0.2411747175865113636, 1e-8); /* mpmath */
-    CHECK_REL(stattest_chi2_cdf(10300, 10200), 0.7588252824134886364, 1e-8);    /* mpmath */
+    CHECK_REL(stattest_chi2_cdf(10300, 10200), 0.7588252824134886364, 1e-8); /* mpmath */
     CHECK(stattest_chi2_cdf(0, 3) == 0 && stattest_chi2_pvalue(0, 3) == 1);
-    CHECK_REL(stattest_gamma_p(3, 2), 0.3233235838169365405, 1e-13);    /* mpmath */
+    CHECK_REL(stattest_gamma_p(3, 2), 0.3233235838169365405, 1e-13); /* mpmath */
     CHECK_REL(stattest_gamma_q(0.5, 30), 9.485737571073848388e-15, 1e-10); /* mpmath */
     CHECK(isnan(stattest_gamma_p(0, 1)) && isnan(stattest_gamma_q(1, -1)));
 }

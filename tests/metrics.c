@@ -1,0 +1,395 @@
+/*
+ * metrics.c - see metrics.h for the definitions of every metric.
+ */
+#include "metrics.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+#include "stattest.h"
+
+/* Running sums of one comparison, all in double. */
+struct sums {
+    size_t n; /* compared pixels */
+    size_t nonfinite; /* masked pixels left out */
+    double rel_sq; /* sum of (x - r)^2 / (r^2 + eps) */
+    double sq; /* sum of (x - r)^2 */
+    double abs; /* sum of |x - r| */
+    size_t over; /* pixels off by more than the frac5 tolerance */
+    double x[3], r[3];
+};
+
+static bool
+same_size(const struct image *x, const struct image *r)
+{
+    return x->width == r->width && x->height == r->height;
+}
+
+static bool
+pixel_finite(const float *p)
+{
+    return isfinite(p[0]) && isfinite(p[1]) && isfinite(p[2]);
+}
+
+static void
+add_pixel(struct sums *s, const float *px, const float *pr)
+{
+    bool over = false;
+    for (int c = 0; c < 3; c++) {
+        double x = px[c];
+        double r = pr[c];
+        double d = x - r;
+        s->rel_sq += d * d / (r * r + METRICS_RELMSE_EPS);
+        s->sq += d * d;
+        s->abs += fabs(d);
+        over = over || fabs(d) > METRICS_FRAC_TOLERANCE * fmax(fabs(r), METRICS_FRAC_FLOOR);
+        s->x[c] += x;
+        s->r[c] += r;
+    }
+    s->over += over;
+    s->n++;
+}
+
+/* Sums over the masked pixels; the sizes must already match. */
+static struct sums
+accumulate(const struct image *x, const struct image *r, const unsigned char *mask)
+{
+    struct sums s = {0};
+    size_t n = (size_t)x->width * (size_t)x->height;
+    for (size_t i = 0; i < n; i++) {
+        if (mask && !mask[i]) {
+            continue;
+        }
+        const float *px = x->rgb + 3 * i;
+        const float *pr = r->rgb + 3 * i;
+        if (pixel_finite(px) && pixel_finite(pr)) {
+            add_pixel(&s, px, pr);
+        } else {
+            s.nonfinite++;
+        }
+    }
+    return s;
+}
+
+static void
+finish(const struct sums *s, struct metrics *out)
+{
+    /* 0/0 gives the documented NaN when nothing was compared. */
+    double pixels = (double)s->n;
+    double values = 3 * pixels;
+    out->n_pixels = s->n;
+    out->n_nonfinite = s->nonfinite;
+    out->relmse = s->n ? s->rel_sq / values : NAN;
+    out->rmse = s->n ? sqrt(s->sq / values) : NAN;
+    out->mae = s->n ? s->abs / values : NAN;
+    out->frac5 = s->n ? (double)s->over / pixels : NAN;
+    for (int c = 0; c < 3; c++) {
+        out->mean[c] = s->n ? s->x[c] / pixels : NAN;
+        out->ref_mean[c] = s->n ? s->r[c] / pixels : NAN;
+    }
+}
+
+bool
+metrics_compare(
+    const struct image *x,
+    const struct image *r,
+    const unsigned char *mask,
+    struct metrics *out,
+    struct diag *err)
+{
+    if (!same_size(x, r)) {
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "render is %dx%d but the reference is %dx%d",
+            x->width,
+            x->height,
+            r->width,
+            r->height);
+        return false;
+    }
+    struct sums s = accumulate(x, r, mask);
+    finish(&s, out);
+    return true;
+}
+
+/* metrics_compare for the one-number wrappers: NaN metrics on a mismatch. */
+static struct metrics
+compare_or_nan(const struct image *x, const struct image *r, const unsigned char *mask)
+{
+    struct metrics m;
+    if (!metrics_compare(x, r, mask, &m, NULL)) {
+        struct sums none = {0};
+        finish(&none, &m);
+    }
+    return m;
+}
+
+double
+metrics_relmse(const struct image *x, const struct image *r, const unsigned char *mask)
+{
+    return compare_or_nan(x, r, mask).relmse;
+}
+
+double
+metrics_rmse(const struct image *x, const struct image *r, const unsigned char *mask)
+{
+    return compare_or_nan(x, r, mask).rmse;
+}
+
+double
+metrics_mae(const struct image *x, const struct image *r, const unsigned char *mask)
+{
+    return compare_or_nan(x, r, mask).mae;
+}
+
+double
+metrics_frac5(const struct image *x, const struct image *r, const unsigned char *mask)
+{
+    return compare_or_nan(x, r, mask).frac5;
+}
+
+size_t
+metrics_mean(const struct image *img, const unsigned char *mask, double out[3])
+{
+    /* The image against itself: the render's mean is the mean asked for. */
+    struct sums s = accumulate(img, img, mask);
+    struct metrics m;
+    finish(&s, &m);
+    for (int c = 0; c < 3; c++) {
+        out[c] = m.mean[c];
+    }
+    return s.n;
+}
+
+size_t
+metrics_count_nonfinite(const struct image *img)
+{
+    size_t n = (size_t)img->width * (size_t)img->height;
+    size_t bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        bad += !pixel_finite(img->rgb + 3 * i);
+    }
+    return bad;
+}
+
+double
+metrics_luminance(const float *rgb)
+{
+    /* ITU-R BT.709 weights: the sRGB primaries are BT.709's. */
+    return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+}
+
+/* Is the 3x3 window around interior pixel (x, y) within tol of its centre? */
+static bool
+window_smooth(const struct image *ref, int x, int y, double tol)
+{
+    double c = metrics_luminance(image_pixel(ref, x, y));
+    double lo = c;
+    double hi = c;
+    for (int dy = -1; dy <= 1; dy++) {
+        for (int dx = -1; dx <= 1; dx++) {
+            double l = metrics_luminance(image_pixel(ref, x + dx, y + dy));
+            lo = fmin(lo, l);
+            hi = fmax(hi, l);
+            if (!isfinite(l)) {
+                return false;
+            }
+        }
+    }
+    return isfinite(c) && hi <= c * (1 + tol) && lo >= c * (1 - tol);
+}
+
+unsigned char *
+metrics_smooth_mask(const struct image *ref, double tolerance, size_t *n_smooth, struct diag *err)
+{
+    size_t n = (size_t)ref->width * (size_t)ref->height;
+    unsigned char *mask = calloc(n ? n : 1, 1);
+    if (!mask) {
+        diag_set(err, NULL, 0, 0, "out of memory for a %dx%d mask", ref->width, ref->height);
+        return NULL;
+    }
+    size_t count = 0;
+    for (int y = 1; y + 1 < ref->height; y++) {
+        for (int x = 1; x + 1 < ref->width; x++) {
+            bool smooth = window_smooth(ref, x, y, tolerance);
+            mask[(size_t)y * (size_t)ref->width + (size_t)x] = smooth;
+            count += smooth;
+        }
+    }
+    if (n_smooth) {
+        *n_smooth = count;
+    }
+    return mask;
+}
+
+/* ---- block statistics ---------------------------------------------------- */
+
+/* Mean of each channel over block b of img; a non-finite pixel makes the
+ * mean non-finite, which the caller turns into a rejection. */
+static void
+block_mean(const struct image *img, const struct metrics_block *b, double out[3])
+{
+    double sum[3] = {0, 0, 0};
+    for (int y = b->y0; y < b->y0 + b->h; y++) {
+        for (int x = b->x0; x < b->x0 + b->w; x++) {
+            const float *p = image_pixel(img, x, y);
+            for (int c = 0; c < 3; c++) {
+                sum[c] += p[c];
+            }
+        }
+    }
+    double count = (double)b->w * (double)b->h;
+    for (int c = 0; c < 3; c++) {
+        out[c] = sum[c] / count;
+    }
+}
+
+/* The test of one channel of one block, its inputs already in b. */
+static void
+test_channel(struct metrics_block *b, int c, int k, double ref_dof)
+{
+    bool finite = isfinite(b->mean[c]) && isfinite(b->var_mean[c]) && isfinite(b->ref_mean[c])
+                  && isfinite(b->ref_se[c]);
+    if (!finite) {
+        b->t[c] = NAN;
+        b->dof[c] = NAN;
+        b->p[c] = 0;
+        return;
+    }
+    struct stattest_result r = stattest_t_test_estimates(
+        b->mean[c],
+        b->var_mean[c],
+        k - 1,
+        b->ref_mean[c],
+        b->ref_se[c] * b->ref_se[c],
+        ref_dof);
+    b->t[c] = r.t;
+    b->dof[c] = r.dof;
+    b->p[c] = isnan(r.p) ? 0 : r.p;
+}
+
+/* Fill block `index` (rectangle already set) from the renders and ref. */
+static void
+fill_block(
+    const struct image *renders,
+    int k,
+    const struct image *ref,
+    const struct metrics_block_params *params,
+    int index,
+    struct metrics_block *b)
+{
+    struct stattest_welford w[3] = {{0}, {0}, {0}};
+    for (int i = 0; i < k; i++) {
+        double m[3];
+        block_mean(&renders[i], b, m);
+        for (int c = 0; c < 3; c++) {
+            stattest_welford_add(&w[c], m[c]);
+        }
+    }
+    block_mean(ref, b, b->ref_mean);
+    for (int c = 0; c < 3; c++) {
+        b->mean[c] = w[c].mean;
+        b->var_mean[c] = stattest_welford_var_of_mean(&w[c]);
+        b->ref_se[c] = params->ref_se ? params->ref_se[3 * (size_t)index + (size_t)c]
+                                      : params->ref_rel_se * fabs(b->ref_mean[c]);
+        test_channel(b, c, k, params->ref_dof);
+    }
+}
+
+static bool
+check_block_inputs(
+    const struct image *renders,
+    int k,
+    const struct image *ref,
+    const struct metrics_block_params *params,
+    struct diag *err)
+{
+    if (k < 2) {
+        diag_set(err, NULL, 0, 0, "block statistics need at least 2 renders, got %d", k);
+        return false;
+    }
+    if (params->block_size < 1 || !(params->ref_rel_se >= 0) || !(params->ref_dof >= 0)) {
+        diag_set(err, NULL, 0, 0, "bad block parameters (size %d)", params->block_size);
+        return false;
+    }
+    for (int i = 0; i < k; i++) {
+        if (!same_size(&renders[i], ref)) {
+            diag_set(
+                err,
+                NULL,
+                0,
+                0,
+                "render %d is %dx%d but the reference is %dx%d",
+                i,
+                renders[i].width,
+                renders[i].height,
+                ref->width,
+                ref->height);
+            return false;
+        }
+    }
+    return true;
+}
+
+bool
+metrics_block_stats(
+    const struct image *renders,
+    int k,
+    const struct image *ref,
+    const struct metrics_block_params *params,
+    struct metrics_block_stats *out,
+    struct diag *err)
+{
+    *out = (struct metrics_block_stats){0};
+    if (!check_block_inputs(renders, k, ref, params, err)) {
+        return false;
+    }
+    int bs = params->block_size < IMAGE_MAX_DIM ? params->block_size : IMAGE_MAX_DIM;
+    out->blocks_x = (ref->width + bs - 1) / bs;
+    out->blocks_y = (ref->height + bs - 1) / bs;
+    out->n_blocks = out->blocks_x * out->blocks_y;
+    out->k = k;
+    out->blocks = calloc((size_t)out->n_blocks, sizeof *out->blocks);
+    if (!out->blocks) {
+        diag_set(err, NULL, 0, 0, "out of memory for %d blocks", out->n_blocks);
+        return false;
+    }
+    for (int i = 0; i < out->n_blocks; i++) {
+        struct metrics_block *b = &out->blocks[i];
+        b->x0 = (i % out->blocks_x) * bs;
+        b->y0 = (i / out->blocks_x) * bs;
+        b->w = ref->width - b->x0 < bs ? ref->width - b->x0 : bs;
+        b->h = ref->height - b->y0 < bs ? ref->height - b->y0 : bs;
+        fill_block(renders, k, ref, params, i, b);
+    }
+    return true;
+}
+
+void
+metrics_block_stats_free(struct metrics_block_stats *s)
+{
+    free(s->blocks);
+    *s = (struct metrics_block_stats){0};
+}
+
+size_t
+metrics_block_rejections(const struct metrics_block_stats *s, double alpha, double *min_p)
+{
+    double level = stattest_sidak(alpha, 3.0 * s->n_blocks);
+    double lowest = 1;
+    size_t rejected = 0;
+    for (int i = 0; i < s->n_blocks; i++) {
+        for (int c = 0; c < 3; c++) {
+            double p = s->blocks[i].p[c];
+            lowest = fmin(lowest, p);
+            rejected += !(p >= level);
+        }
+    }
+    if (min_p) {
+        *min_p = lowest;
+    }
+    return rejected;
+}
