@@ -48,11 +48,15 @@ diffuse_albedo(const struct material *m, const struct hit *h)
     return m->albedo;
 }
 
-/* Radiance arriving at h from direction d, along a new ray of the chain. */
+/* Radiance arriving at h from direction d, along a new ray of the chain;
+ * nothing once the chain is max_depth rays long. */
 static vec3
 trace_on(const struct renderer *renderer, const struct hit *h, vec3 d, int depth,
     struct rng *rng, struct stats *st)
 {
+    if (depth >= renderer->max_depth) {
+        return vec3_splat(0);
+    }
     st->rays_secondary++;
     return trace(renderer, spawn_ray(h, d), depth + 1, rng, st);
 }
@@ -106,9 +110,6 @@ vec3
 trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct stats *st)
 {
     struct hit h;
-    if (depth > renderer->max_depth) {
-        return vec3_splat(0);
-    }
     if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
         return renderer->scene->background;
     }

@@ -46,7 +46,7 @@ vec3 shade(const struct renderer *renderer, ray r, const struct hit *h, int dept
     struct stats *st);
 
 /* Radiance arriving at r.o from direction -r.d; r is the depth-th ray of
- * its chain (the camera ray is 1), and none beyond max_depth is traced. */
+ * its chain (the camera ray is 1); chains end at max_depth rays. */
 vec3 trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct stats *st);
 
 /* The driver's pixel function (driver.h): the mean radiance of spp camera
