@@ -96,4 +96,20 @@ rng_below(struct rng *r, uint32_t n)
     return (uint32_t)(m >> 32);
 }
 
+/* Columns k of the most nearly square k x m grid with k m = n (k <= m):
+ * stratified sampling puts one sample in each cell of such a grid, for any
+ * sample count n > 0 (a prime n gives a 1 x n grid of strips). */
+static inline int
+strata_columns(int n)
+{
+    int k = 1;
+    while ((k + 1) * (k + 1) <= n) {
+        k++;
+    }
+    while (n % k != 0) {
+        k--;
+    }
+    return k;
+}
+
 #endif /* RNG_H */

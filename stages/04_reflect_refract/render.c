@@ -16,15 +16,15 @@ cell_parity(real x, real size)
     return fabs(fmod(floor(x / size), (real)2)) > (real)0.5;
 }
 
-/* A solid 3D checkerboard of cubes of edge checker_size.  The point is
- * moved a quarter cube into the surface first, so a surface lying exactly
- * on a cube face (the floor at y = 0) does not flicker between two cells
- * with the rounding of p. */
+/* A solid 3D checkerboard of cubes of edge checker_size, with a cube corner
+ * at the origin.  A surface lying exactly on a cube face (the floor at
+ * y = 0) would flicker between two cells with the rounding of p, so p is
+ * first moved towards -infinity on every axis by more than its error bound:
+ * such a surface always takes the cell below, whichever way it faces. */
 static vec3
 checker_albedo(const struct material *m, const struct hit *h)
 {
-    vec3 outward = h->front_face ? h->ng : vec3_neg(h->ng);
-    vec3 q = vec3_madd(h->p, outward, -m->checker_size / 4);
+    vec3 q = vec3_sub(h->p, vec3_splat(2 * h->error));
     int parity = cell_parity(q.x, m->checker_size) ^ cell_parity(q.y, m->checker_size)
         ^ cell_parity(q.z, m->checker_size);
     return parity ? m->albedo2 : m->albedo;

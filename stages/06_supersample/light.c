@@ -88,23 +88,20 @@ light_sample_irradiance(const struct world *w, const struct hit *h,
     return vec3_mul(through, vec3_scale(light->radiance, geometry * area_light_area(light)));
 }
 
-/* The sum of n samples of the light's irradiance: a jittered k x k grid over
- * the light (k = floor(sqrt(n))), then n - k^2 uniform samples.  Each sample
- * is unbiased, so their mean is too, and the grid stratifies most of them.
- * *n_blocked counts the samples the light was blocked for. */
+/* The sum of n samples of the light's irradiance, one in each cell of a
+ * k x m grid over the light (jittered stratification: each sample is
+ * unbiased, so their mean is, and no two crowd together).  *n_blocked
+ * counts the samples the light was blocked for. */
 static vec3
 sum_light_samples(const struct world *w, const struct hit *h, const struct area_light *light,
     int n, struct rng *rng, struct stats *st, int *n_blocked)
 {
-    int k = (int)sqrt((double)n);
+    int k = strata_columns(n);
+    int m = n / k;
     vec3 sum = vec3_splat(0);
     for (int i = 0; i < n; i++) {
-        real u = rng_uniform(rng);
-        real v = rng_uniform(rng);
-        if (i < k * k) {
-            u = ((real)(i % k) + u) / (real)k;
-            v = ((real)(i / k) + v) / (real)k;
-        }
+        real u = ((real)(i % k) + rng_uniform(rng)) / (real)k;
+        real v = ((real)(i / k) + rng_uniform(rng)) / (real)m;
         bool blocked;
         vec3 y = sample_area_light(light, u, v);
         sum = vec3_add(sum, light_sample_irradiance(w, h, light, y, st, &blocked));
@@ -113,10 +110,65 @@ sum_light_samples(const struct world *w, const struct hit *h, const struct area_
     return sum;
 }
 
+/* Clip a convex polygon to the half-space above the plane through p with
+ * normal n (Sutherland and Hodgman, 1974).  Returns the new vertex count
+ * (at most n_in + 1). */
+static int
+clip_above(const vec3 *in, int n_in, vec3 p, vec3 n, vec3 *out)
+{
+    int n_out = 0;
+    for (int i = 0; i < n_in; i++) {
+        vec3 a = in[i];
+        vec3 b = in[(i + 1) % n_in];
+        real da = vec3_dot(n, vec3_sub(a, p));
+        real db = vec3_dot(n, vec3_sub(b, p));
+        if (da >= 0) {
+            out[n_out++] = a;
+        }
+        if ((da >= 0) != (db >= 0)) {
+            out[n_out++] = vec3_lerp(a, b, da / (da - db));
+        }
+    }
+    return n_out;
+}
+
+/* The irradiance the light gives h when nothing is in the way, in closed
+ * form: for a polygon of constant radiance L seen from a point with normal n,
+ *     E = L/2 * | sum_i theta_i n . g_i |,
+ * theta_i the angle the edge (v_i, v_i+1) subtends and g_i the unit normal
+ * of the plane through the point and that edge (Lambert, 1760; Arvo,
+ * "Applications of Irradiance Tensors", 1995).  The part of the light below
+ * the surface's horizon is clipped away first. */
+static vec3
+unoccluded_irradiance(const struct hit *h, const struct area_light *light)
+{
+    if (vec3_dot(area_light_normal(light), vec3_sub(h->p, light->corner)) <= 0) {
+        return vec3_splat(0); /* behind the one-sided light */
+    }
+    vec3 corners[4] = {light->corner, vec3_add(light->corner, light->edge1),
+        vec3_add(vec3_add(light->corner, light->edge1), light->edge2),
+        vec3_add(light->corner, light->edge2)};
+    vec3 poly[5];
+    int n = clip_above(corners, 4, h->p, h->n, poly);
+    real sum = 0;
+    for (int i = 0; i < n; i++) {
+        vec3 a = vec3_sub(poly[i], h->p);
+        vec3 b = vec3_sub(poly[(i + 1) % n], h->p);
+        vec3 g = vec3_cross(a, b);
+        real g_len = vec3_length(g);
+        if (g_len > 0) {
+            real theta = atan2(g_len, vec3_dot(a, b));
+            sum += theta * vec3_dot(h->n, g) / g_len;
+        }
+    }
+    return vec3_scale(light->radiance, fabs(sum) / 2);
+}
+
 /* Irradiance from one area light.  Adaptive mode (as classic renderers do):
- * a few probe rays; if they agree - all blocked or none - the point is
- * taken as fully shadowed or fully lit; otherwise it is in a penumbra and
- * gets more samples, averaged with the probes. */
+ * a few probe rays; if they agree, the point is taken as fully shadowed (0)
+ * or fully lit (the exact unoccluded irradiance: no noise at all); otherwise
+ * it is in a penumbra and gets more samples, averaged with the probes.  The
+ * price is a bias where a thin shadow slips between all the probes. */
 static vec3
 area_light_irradiance(const struct world *w, const struct hit *h, const struct area_light *light,
     const struct shadow_sampling *sampling, struct rng *rng, struct stats *st)
@@ -128,8 +180,11 @@ area_light_irradiance(const struct world *w, const struct hit *h, const struct a
     }
     int probes = sampling->adaptive[0];
     vec3 sum = sum_light_samples(w, h, light, probes, rng, st, &blocked);
-    if (blocked == 0 || blocked == probes) {
-        return vec3_scale(sum, 1 / (real)probes);
+    if (blocked == probes) {
+        return vec3_splat(0);
+    }
+    if (blocked == 0) {
+        return unoccluded_irradiance(h, light);
     }
     st->extra[STAT_PENUMBRA]++;
     int more = sampling->adaptive[1];

@@ -16,15 +16,15 @@ cell_parity(real x, real size)
     return fabs(fmod(floor(x / size), (real)2)) > (real)0.5;
 }
 
-/* A solid 3D checkerboard of cubes of edge checker_size.  The point is
- * moved a quarter cube into the surface first, so a surface lying exactly
- * on a cube face (the floor at y = 0) does not flicker between two cells
- * with the rounding of p. */
+/* A solid 3D checkerboard of cubes of edge checker_size, with a cube corner
+ * at the origin.  A surface lying exactly on a cube face (the floor at
+ * y = 0) would flicker between two cells with the rounding of p, so p is
+ * first moved towards -infinity on every axis by more than its error bound:
+ * such a surface always takes the cell below, whichever way it faces. */
 static vec3
 checker_albedo(const struct material *m, const struct hit *h)
 {
-    vec3 outward = h->front_face ? h->ng : vec3_neg(h->ng);
-    vec3 q = vec3_madd(h->p, outward, -m->checker_size / 4);
+    vec3 q = vec3_sub(h->p, vec3_splat(2 * h->error));
     int parity = cell_parity(q.x, m->checker_size) ^ cell_parity(q.y, m->checker_size)
         ^ cell_parity(q.z, m->checker_size);
     return parity ? m->albedo2 : m->albedo;
@@ -116,19 +116,20 @@ trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct
     return shade(renderer, r, &h, depth, rng, st);
 }
 
-/* Position (in [0,1)^2 of the pixel) of sample i of n.  Grid: cell centres
- * of a k x k grid.  Jitter: a uniform point in each cell (k = floor(sqrt n)
- * cells a side; any samples beyond k^2 uniform over the pixel), which keeps
- * every sample unbiased and stratifies most of them (Cook, "Stochastic
- * Sampling in Computer Graphics", 1986). */
+/* Position (in [0,1)^2 of the pixel) of sample i of n, in cell i of a
+ * k x m grid over the pixel (k m = n, as square as n allows).  Grid: the
+ * cell's centre.  Jitter: a uniform point in the cell, which keeps every
+ * sample unbiased and no two crowded together (Cook, "Stochastic Sampling
+ * in Computer Graphics", 1986). */
 static void
 sample_position(int pattern, int i, int n, struct rng *rng, real *dx, real *dy)
 {
-    int k = (int)sqrt((double)n);
+    int k = strata_columns(n);
+    int m = n / k;
     real u = pattern == AA_GRID ? (real)0.5 : rng_uniform(rng);
     real v = pattern == AA_GRID ? (real)0.5 : rng_uniform(rng);
-    *dx = i < k * k ? ((real)(i % k) + u) / (real)k : u;
-    *dy = i < k * k ? ((real)(i / k) + v) / (real)k : v;
+    *dx = ((real)(i % k) + u) / (real)k;
+    *dy = ((real)(i / k) + v) / (real)m;
 }
 
 static real

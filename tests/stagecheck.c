@@ -1,0 +1,186 @@
+/* stagecheck.c - see stagecheck.h. */
+#include "stagecheck.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "metrics.h"
+#include "rng.h"
+#include "testlib.h"
+
+const char *
+stagecheck_scene(const char *name, const char *format, ...)
+{
+    static char text[16384];
+    va_list ap;
+    va_start(ap, format);
+    int n = vsnprintf(text, sizeof text, format, ap);
+    va_end(ap);
+    if (n < 0 || (size_t)n >= sizeof text) {
+        printf("stagecheck_scene: scene %s does not fit in %zu bytes\n", name, sizeof text);
+        return NULL;
+    }
+    const char *path = test_tmp_path(name);
+    if (!test_write_file(path, text)) {
+        printf("stagecheck_scene: cannot write %s\n", path);
+        return NULL;
+    }
+    return path;
+}
+
+bool
+stagecheck_render(
+    const char *scene,
+    const char *const args[],
+    struct image *out,
+    const char **stats)
+{
+    static int counter;
+    const char *argv[64];
+    int n = 0;
+    for (int i = 0; args && args[i] && n < 60; i++) {
+        argv[n++] = args[i];
+    }
+    if (stats) {
+        char name[64];
+        snprintf(name, sizeof name, "stats-%d.json", counter++);
+        *stats = test_tmp_path(name);
+        argv[n++] = "--stats";
+        argv[n++] = *stats;
+    }
+    argv[n] = NULL;
+    if (!scene) {
+        printf("stagecheck_render: no scene\n");
+        return false;
+    }
+    return test_render_image(scene, argv, out);
+}
+
+double
+stagecheck_stat(const char *stats, const char *key)
+{
+    double value;
+    if (!stats || !test_json_number(stats, key, &value)) {
+        printf("statistics %s: no key \"%s\"\n", stats ? stats : "(none)", key);
+        return NAN;
+    }
+    return value;
+}
+
+bool
+stagecheck_reference(const char *name, struct image *out)
+{
+    char relative[256];
+    snprintf(relative, sizeof relative, "tests/reference/%s.pfm", name);
+    struct diag err;
+    if (!image_read_pfm(test_root_path(relative), out, &err)) {
+        diag_print(stdout, &err, "error");
+        return false;
+    }
+    return true;
+}
+
+double
+stagecheck_relmse_smooth(const struct image *x, const struct image *ref, size_t *n_smooth)
+{
+    struct diag err;
+    *n_smooth = 0;
+    unsigned char *mask = metrics_smooth_mask(ref, METRICS_SMOOTH_TOLERANCE, n_smooth, &err);
+    if (!mask) {
+        diag_print(stdout, &err, "error");
+        return NAN;
+    }
+    double relmse = metrics_relmse(x, ref, mask);
+    free(mask);
+    return relmse;
+}
+
+double
+stagecheck_region_mean(const struct image *img, int x0, int y0, int w, int h, int c)
+{
+    double sum = 0;
+    for (int y = y0; y < y0 + h; y++) {
+        for (int x = x0; x < x0 + w; x++) {
+            sum += image_pixel(img, x, y)[c];
+        }
+    }
+    return sum / ((double)w * (double)h);
+}
+
+double
+stagecheck_pixel_reldiff(const float *a, const float *b, double floor)
+{
+    double worst = 0;
+    for (int c = 0; c < 3; c++) {
+        double d = fabs((double)a[c] - (double)b[c]) / fmax(fabs((double)b[c]), floor);
+        worst = isnan(d) ? INFINITY : fmax(worst, d);
+    }
+    return worst;
+}
+
+bool
+stagecheck_interior(const struct image *img, int x, int y, double tolerance)
+{
+    if (x < 1 || y < 1 || x >= img->width - 1 || y >= img->height - 1) {
+        return false;
+    }
+    const float *centre = image_pixel(img, x, y);
+    for (int dy = -1; dy <= 1; dy++) {
+        for (int dx = -1; dx <= 1; dx++) {
+            if (stagecheck_pixel_reldiff(image_pixel(img, x + dx, y + dy), centre, 1e-6)
+                > tolerance) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+double
+stagecheck_resolvable(double x)
+{
+    return fmax(x, 1000 * (double)REAL_EPSILON);
+}
+
+bool
+stagecheck_representable(double size, double offset)
+{
+    return (double)REAL_EPSILON * offset <= 1e-4 * size;
+}
+
+double
+stagecheck_dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+void
+stagecheck_cross3(const double a[3], const double b[3], double out[3])
+{
+    double c[3] = {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    out[0] = c[0];
+    out[1] = c[1];
+    out[2] = c[2];
+}
+
+void
+stagecheck_normalize3(double a[3])
+{
+    double len = sqrt(stagecheck_dot3(a, a));
+    a[0] /= len;
+    a[1] /= len;
+    a[2] /= len;
+}
+
+void
+stagecheck_random_unit(struct rng *rng, double out[3])
+{
+    double z = 1 - 2 * (double)rng_uniform(rng);
+    double phi = 2 * PI * (double)rng_uniform(rng);
+    double s = sqrt(fmax(0.0, 1 - z * z));
+    out[0] = s * cos(phi);
+    out[1] = s * sin(phi);
+    out[2] = z;
+}

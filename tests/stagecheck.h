@@ -1,0 +1,91 @@
+/*
+ * stagecheck.h - helpers shared by the tests of stages 02-04 (shadows, soft
+ * shadows, Whitted): scenes written from a format string, renders that also
+ * return their --stats, the reference images of tests/reference/, and the
+ * small image statistics those tests need beyond metrics.h (region means,
+ * per-pixel comparisons).
+ */
+#ifndef STAGECHECK_H
+#define STAGECHECK_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "image.h"
+
+struct rng;
+
+/* Write a scene file named `name` in the test's temporary directory from a
+ * printf format; returns its path (valid until the program ends), or NULL
+ * when the text does not fit or cannot be written. */
+const char *stagecheck_scene(const char *name, const char *format, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/* Render `scene` with the extra arguments `args` (NULL-terminated, may be
+ * NULL) and, when stats is not NULL, also --stats into a temporary JSON file
+ * whose path is stored in *stats (valid until the program ends).  Returns
+ * false, with the binary's output printed, when the run fails. */
+bool stagecheck_render(
+    const char *scene,
+    const char *const args[],
+    struct image *out,
+    const char **stats);
+
+/* A numeric key of a --stats file; NaN (and a message) when it is missing. */
+double stagecheck_stat(const char *stats, const char *key);
+
+/* tests/reference/<name>.pfm; false (with a message) when it is missing. */
+bool stagecheck_reference(const char *name, struct image *out);
+
+/* relMSE of x against ref over ref's smooth pixels (metrics.h, 3x3 window
+ * within METRICS_SMOOTH_TOLERANCE); *n_smooth gets their number.  NaN when
+ * the sizes differ, no pixel is smooth or memory runs out. */
+double stagecheck_relmse_smooth(const struct image *x, const struct image *ref, size_t *n_smooth);
+
+/* Small vector algebra in double, for expected values computed
+ * independently of the stage's vec3. */
+double stagecheck_dot3(const double a[3], const double b[3]);
+void stagecheck_cross3(const double a[3], const double b[3], double out[3]);
+void stagecheck_normalize3(double a[3]);
+
+/* A direction uniform on the unit sphere (Archimedes: z uniform in
+ * [-1, 1], the azimuth uniform), from rng.h's generator.  (Plain doubles,
+ * so that this header does not bring vec3.h's <tgmath.h> into tests that
+ * do not want it.) */
+void stagecheck_random_unit(struct rng *rng, double out[3]);
+
+#ifdef VEC3_H
+/* The same as a vec3, for white-box tests (which include vec3.h, through
+ * rng.h, before this header). */
+static inline vec3
+stagecheck_random_vec3(struct rng *rng)
+{
+    double d[3];
+    stagecheck_random_unit(rng, d);
+    return vec3_make((real)d[0], (real)d[1], (real)d[2]);
+}
+#endif
+
+/* x, or the smallest relative distance this build's precision (real, see
+ * vec3.h) resolves with margin, 1000 REAL_EPSILON, if that is larger:
+ * tests that place things 1e-9 apart in double need 1e-4 in float. */
+double stagecheck_resolvable(double x);
+
+/* Whether a shape of size `size` placed `offset` from the origin is
+ * resolved by this build's precision: REAL_EPSILON * offset <= 1e-4 * size
+ * (a float scene 1 across at 1e5 is not). */
+bool stagecheck_representable(double size, double offset);
+
+/* Mean of channel c (0..2) over the w x h pixels from (x0, y0). */
+double stagecheck_region_mean(const struct image *img, int x0, int y0, int w, int h, int c);
+
+/* Whether pixel (x, y) and its 8 neighbours all lie within `tolerance`
+ * (relative, every channel) of one another's centre value: the pixel is
+ * not on an edge of img.  Border pixels are never interior. */
+bool stagecheck_interior(const struct image *img, int x, int y, double tolerance);
+
+/* The largest relative difference |a - b| / max(|b|, floor) over the
+ * channels of one pixel. */
+double stagecheck_pixel_reldiff(const float *a, const float *b, double floor);
+
+#endif /* STAGECHECK_H */
