@@ -40,6 +40,20 @@ world_make(const struct scene *s)
     return (struct world){.scene = s, .n_prims = n_shapes + s->n_area_lights};
 }
 
+bool
+world_build_bvh(struct world *w, struct diag *err)
+{
+    w->use_bvh = bvh_build(&w->bvh, w, err);
+    return w->use_bvh;
+}
+
+void
+world_free(struct world *w)
+{
+    bvh_free(&w->bvh);
+    w->use_bvh = false;
+}
+
 /*
  * The sphere quadratic t^2 + 2 b' t + c = 0 (unit direction), solved without
  * catastrophic cancellation (Haines et al., "Precision Improvements for
@@ -242,6 +256,13 @@ hit_finish(const struct scene *s, ray r, struct hit *h)
 bool
 world_intersect(const struct world *w, ray r, real t_max, struct hit *out, struct stats *st)
 {
+    if (w->use_bvh) {
+        bool hit = bvh_intersect(&w->bvh, w, r, t_max, out, st);
+        if (hit) {
+            hit_finish(w->scene, r, out);
+        }
+        return hit;
+    }
     bool found = false;
     for (int prim = 0; prim < w->n_prims; prim++) {
         if (intersect_prim(w->scene, prim, r, t_max, out)) {
@@ -259,6 +280,9 @@ world_intersect(const struct world *w, ray r, real t_max, struct hit *out, struc
 bool
 world_occluded(const struct world *w, ray r, real t_max, struct stats *st)
 {
+    if (w->use_bvh) {
+        return bvh_occluded(&w->bvh, w, r, t_max, st);
+    }
     struct hit h;
     for (int prim = 0; prim < w->n_prims; prim++) {
         if (intersect_prim(w->scene, prim, r, t_max, &h)) {

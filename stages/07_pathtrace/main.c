@@ -133,6 +133,27 @@ write_outputs(const struct image *image, const char *output, const struct option
     return EXIT_OK;
 }
 
+/* Build the BVH (unless --no-bvh) and report its shape. */
+static bool
+build_acceleration(struct renderer *renderer, bool use_bvh, struct report *rep, struct diag *err)
+{
+    if (!use_bvh) {
+        return true;
+    }
+    double start = clock_seconds();
+    if (!world_build_bvh(&renderer->world, err)) {
+        return false;
+    }
+    const struct bvh *bvh = &renderer->world.bvh;
+    rep->seconds_build = clock_seconds() - start;
+    report_set(rep, "bvh_nodes", bvh->n_nodes, true);
+    report_set(rep, "bvh_depth", bvh->depth, true);
+    report_set(rep, "bvh_max_leaf", bvh->max_leaf, true);
+    report_set(rep, "bvh_mean_leaf", bvh->mean_leaf, false);
+    report_set(rep, "bvh_bytes", (double)bvh->bytes, true);
+    return true;
+}
+
 static int
 render_and_write(struct renderer *renderer, const struct options *opt, const char *output,
     struct report *rep, double start)
@@ -186,6 +207,7 @@ main(int argc, char **argv)
         .nee = true,
         .rr = true,
     };
+    bool use_bvh = true;
     const struct option_spec stage_options[] = {
         {
             .name = "shadow-samples",
@@ -213,6 +235,12 @@ main(int argc, char **argv)
             .max = 1 << 16,
             .arg = "N",
             .help = "longest path, the camera ray included (default 65536: unbounded)",
+        },
+        {
+            .name = "no-bvh",
+            .kind = OPT_UNSET,
+            .dest = &use_bvh,
+            .help = "test every primitive for every ray (the brute-force reference)",
         },
         {
             .name = "aa",
@@ -289,8 +317,14 @@ main(int argc, char **argv)
     rep.seconds_load = clock_seconds() - start;
     renderer.scene = &scene;
     renderer.world = world_make(&scene);
+    if (!build_acceleration(&renderer, use_bvh, &rep, &err)) {
+        diag_print(stderr, &err, "error");
+        scene_free(&scene);
+        return EXIT_INPUT;
+    }
     render_stop_on_interrupt();
     int status = render_and_write(&renderer, &opt, output, &rep, start);
+    world_free(&renderer.world);
     scene_free(&scene);
     return status;
 }

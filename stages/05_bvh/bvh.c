@@ -1,0 +1,725 @@
+/*
+ * bvh.c - the median-split bounding volume hierarchy: build and traversal.
+ *
+ * Build (bvh_build): each primitive is reduced to the centre of its bounding
+ * box; a node's primitives are split at the median centroid along the axis
+ * where the centroids spread most, found by selection (Hoare's FIND), not by
+ * sorting: O(n) per level, O(n log n) in all.  Splitting by count needs no
+ * special case: coincident centroids are split anyway, so every leaf holds
+ * at most BVH_MAX_LEAF primitives and the depth is ceil(log2(n / leaf)) + 1.
+ * (This is not the surface area heuristic of pbrt or Embree, which cut where
+ * the expected cost is lowest and trace faster; see docs/stages/05_bvh.md.)
+ *
+ * Traversal (bvh_intersect, bvh_occluded): an explicit stack, the child on
+ * the ray's side of the split visited first, the ray-box slab test of Kay
+ * and Kajiya ("Ray Tracing Complex Scenes", SIGGRAPH 1986) with the IEEE
+ * infinity handling of Williams et al. ("An Efficient and Robust Ray-Box
+ * Intersection Algorithm", JGT 10(1), 2005), and the primitives tested with
+ * the same functions and inputs as the brute-force loop of world_intersect,
+ * so the answer is the same bit for bit.
+ */
+#include "bvh.h"
+
+#include <float.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "geometry.h"
+
+static_assert(BVH_MAX_LEAF >= 1 && BVH_MAX_LEAF <= UINT16_MAX, "leaf counts are uint16_t");
+static_assert(BVH_MAX_DEPTH >= 33, "an int primitive count needs up to 32 levels");
+
+/*
+ * Boxes are widened by this many REAL_EPSILONs of the scene's size (its
+ * largest coordinate).  Rounding makes a computed hit lie off the exact
+ * surface, and a computed slab distance off the exact box, by a few
+ * epsilons of the distances involved; a box that only just held its
+ * primitive could then be missed by a ray that the primitive test reports
+ * as a hit, and the BVH would disagree with brute force.  256 epsilons cover
+ * rays starting within ~50 scene sizes that are not nearly parallel to the
+ * surface they hit, at a cost in box size (2^-44 of the scene in double,
+ * 2^-15 in float) that no traversal notices.
+ */
+#define MARGIN_EPSILONS 256
+
+/* Ranges at most this long are finished by insertion sort. */
+#define SELECT_SMALL 16
+
+/* An axis-aligned box in the working precision. */
+struct box {
+    vec3 lo, hi;
+};
+
+/* What the build rearranges: a primitive and its centroid, 16 bytes, so the
+ * selection moves little memory and reads it in order. */
+struct build_ref {
+    float centroid[3];
+    int prim;
+};
+
+struct builder {
+    struct bvh *bvh;
+    struct build_ref *refs; /* in leaf order once the build is done */
+};
+
+/* --- primitive bounds ------------------------------------------------------ */
+
+static struct box
+box_empty(void)
+{
+    return (struct box){vec3_splat(REAL_MAX), vec3_splat(-REAL_MAX)};
+}
+
+/* b grown to hold p.  (Comparisons rather than fmin/fmax, which are calls
+ * into libm at -O2.) */
+static struct box
+box_add_point(struct box b, vec3 p)
+{
+    b.lo = (vec3){p.x < b.lo.x ? p.x : b.lo.x, p.y < b.lo.y ? p.y : b.lo.y,
+        p.z < b.lo.z ? p.z : b.lo.z};
+    b.hi = (vec3){p.x > b.hi.x ? p.x : b.hi.x, p.y > b.hi.y ? p.y : b.hi.y,
+        p.z > b.hi.z ? p.z : b.hi.z};
+    return b;
+}
+
+static struct box
+box_union(struct box a, struct box b)
+{
+    return box_add_point(box_add_point(a, b.lo), b.hi);
+}
+
+static struct box
+triangle_bounds(vec3 p0, vec3 p1, vec3 p2)
+{
+    return box_add_point(box_add_point(box_add_point(box_empty(), p0), p1), p2);
+}
+
+static struct box
+parallelogram_bounds(vec3 corner, vec3 edge1, vec3 edge2)
+{
+    struct box b = triangle_bounds(corner, vec3_add(corner, edge1), vec3_add(corner, edge2));
+    return box_add_point(b, vec3_add(vec3_add(corner, edge1), edge2));
+}
+
+/* Bounds of primitive `prim` in the world's numbering: spheres, quads,
+ * triangles, then (when the world counts them) area lights. */
+static struct box
+prim_bounds(const struct world *w, int prim)
+{
+    const struct scene *s = w->scene;
+    int first_quad = s->n_spheres;
+    int first_triangle = first_quad + s->n_quads;
+    int first_light = first_triangle + s->n_triangles;
+    if (prim < first_quad) {
+        const struct sphere *sp = &s->spheres[prim];
+        vec3 r = vec3_splat(sp->radius);
+        return (struct box){vec3_sub(sp->center, r), vec3_add(sp->center, r)};
+    }
+    if (prim < first_triangle) {
+        const struct quad *q = &s->quads[prim - first_quad];
+        return parallelogram_bounds(q->corner, q->edge1, q->edge2);
+    }
+    if (prim < first_light) {
+        const struct triangle *tri = &s->triangles[prim - first_triangle];
+        const vec3 *p = s->positions;
+        return triangle_bounds(p[tri->v[0]], p[tri->v[1]], p[tri->v[2]]);
+    }
+    const struct area_light *light = &s->area_lights[prim - first_light];
+    return parallelogram_bounds(light->corner, light->edge1, light->edge2);
+}
+
+/* The largest float <= x: a box stored as float still contains the
+ * real-valued one. */
+static float
+float_below(real x)
+{
+    if (!(x > -FLT_MAX)) {
+        return -INFINITY;
+    }
+    if (x >= FLT_MAX) {
+        return FLT_MAX;
+    }
+    float f = (float)x;
+    return (real)f > x ? nextafterf(f, -INFINITY) : f;
+}
+
+/* The smallest float >= x. */
+static float
+float_above(real x)
+{
+    return -float_below(-x);
+}
+
+/* --- the median split ----------------------------------------------------- */
+
+/* Whole 16-byte copies: with plain assignments the compiler copies a record
+ * field by field, and the partition's next read of it, 16 bytes at once,
+ * then waits for the pieces to reach memory (a failed store forwarding). */
+static void
+swap_refs(struct build_ref *a, struct build_ref *b)
+{
+    struct build_ref tmp;
+    memcpy(&tmp, a, sizeof tmp);
+    memcpy(a, b, sizeof tmp);
+    memcpy(b, &tmp, sizeof tmp);
+}
+
+/* Order refs[lo], refs[mid], refs[hi] by key and return the middle key: a
+ * pivot that is not the range's extreme unless keys repeat. */
+static float
+median_of_three(struct build_ref *refs, int lo, int hi, int axis)
+{
+    int mid = lo + (hi - lo) / 2;
+    if (refs[mid].centroid[axis] < refs[lo].centroid[axis]) {
+        swap_refs(&refs[mid], &refs[lo]);
+    }
+    if (refs[hi].centroid[axis] < refs[lo].centroid[axis]) {
+        swap_refs(&refs[hi], &refs[lo]);
+    }
+    if (refs[hi].centroid[axis] < refs[mid].centroid[axis]) {
+        swap_refs(&refs[hi], &refs[mid]);
+    }
+    return refs[mid].centroid[axis];
+}
+
+/*
+ * Move the refs of refs[lo, hi] whose key is below the pivot (or equal to
+ * it, when or_equal) to the front; returns where the others start.  Lomuto's
+ * partition written without a branch on the key: every element is swapped
+ * and the boundary moves by 0 or 1, because on random keys a branch would be
+ * mispredicted half the time and cost more than the whole loop body.
+ */
+static int
+partition(struct build_ref *refs, int lo, int hi, int axis, float pivot, bool or_equal)
+{
+    int j = lo;
+    for (int i = lo; i <= hi; i++) {
+        float key = refs[i].centroid[axis];
+        int goes_first = (key < pivot) | (or_equal & (key == pivot)); /* | and &: no branch */
+        swap_refs(&refs[i], &refs[j]);
+        j += goes_first;
+    }
+    return j;
+}
+
+static void
+insertion_sort(struct build_ref *refs, int lo, int hi, int axis)
+{
+    for (int i = lo + 1; i <= hi; i++) {
+        struct build_ref r = refs[i];
+        int j = i;
+        for (; j > lo && refs[j - 1].centroid[axis] > r.centroid[axis]; j--) {
+            refs[j] = refs[j - 1];
+        }
+        refs[j] = r;
+    }
+}
+
+/*
+ * Rearrange refs[0, n) so that refs[k] is the element a sort by
+ * centroid[axis] would put there, none before it greater and none after it
+ * smaller: quickselect (Hoare's FIND, CACM 4(7), 1961), expected O(n).  Each
+ * round splits the range into keys below the pivot, equal to it and above it
+ * (the second pass only when k is not below), and keeps the part holding k;
+ * the equal part is never empty, so every round shrinks the range, even
+ * when all keys are equal (all centroids coincide).
+ */
+static void
+split_median(struct build_ref *refs, int n, int k, int axis)
+{
+    int lo = 0;
+    int hi = n - 1;
+    while (hi - lo > SELECT_SMALL) {
+        float pivot = median_of_three(refs, lo, hi, axis);
+        int equal = partition(refs, lo, hi, axis, pivot, false);
+        if (k < equal) {
+            hi = equal - 1;
+            continue;
+        }
+        int above = partition(refs, equal, hi, axis, pivot, true);
+        if (k < above) {
+            return;
+        }
+        lo = above;
+    }
+    insertion_sort(refs, lo, hi, axis);
+}
+
+/* The axis along which the centroids of refs[0, n) spread most (x on ties,
+ * including when they all coincide). */
+static int
+widest_centroid_axis(const struct build_ref *refs, int n)
+{
+    float lo_x = INFINITY, lo_y = INFINITY, lo_z = INFINITY;
+    float hi_x = -INFINITY, hi_y = -INFINITY, hi_z = -INFINITY;
+    for (int i = 0; i < n; i++) {
+        const float *c = refs[i].centroid;
+        lo_x = c[0] < lo_x ? c[0] : lo_x;
+        lo_y = c[1] < lo_y ? c[1] : lo_y;
+        lo_z = c[2] < lo_z ? c[2] : lo_z;
+        hi_x = c[0] > hi_x ? c[0] : hi_x;
+        hi_y = c[1] > hi_y ? c[1] : hi_y;
+        hi_z = c[2] > hi_z ? c[2] : hi_z;
+    }
+    float extent[3] = {hi_x - lo_x, hi_y - lo_y, hi_z - lo_z};
+    int axis = extent[1] > extent[0] ? 1 : 0;
+    return extent[2] > extent[axis] ? 2 : axis;
+}
+
+/* --- building ------------------------------------------------------------- */
+
+/* Lay out the subtree over refs[begin, end) as the next nodes, depth first,
+ * leaving the boxes for set_boxes; returns its root's index.  Recursion is
+ * as deep as the tree: ~log2(n). */
+static uint32_t
+build_subtree(struct builder *b, int begin, int end, int depth)
+{
+    struct bvh *bvh = b->bvh;
+    uint32_t id = (uint32_t)bvh->n_nodes++;
+    bvh->depth = depth > bvh->depth ? depth : bvh->depth;
+    if (end - begin <= BVH_MAX_LEAF) {
+        bvh->nodes[id] = (struct bvh_node){.index = (uint32_t)begin, .count = (uint16_t)(end - begin)};
+        return id;
+    }
+    int axis = widest_centroid_axis(b->refs + begin, end - begin);
+    int mid = begin + (end - begin) / 2;
+    split_median(b->refs + begin, end - begin, mid - begin, axis);
+    build_subtree(b, begin, mid, depth + 1); /* the first child: node id + 1 */
+    uint32_t second = build_subtree(b, mid, end, depth + 1);
+    bvh->nodes[id] = (struct bvh_node){.index = second, .axis = (uint8_t)axis};
+    return id;
+}
+
+/* Every primitive's centroid, in numbering order; returns the box around
+ * all primitives. */
+static struct box
+make_refs(const struct world *w, struct build_ref *refs)
+{
+    struct box all = box_empty();
+    for (int prim = 0; prim < w->n_prims; prim++) {
+        struct box b = prim_bounds(w, prim);
+        all = box_union(all, b);
+        vec3 c = vec3_scale(vec3_add(b.lo, b.hi), (real)0.5);
+        refs[prim] = (struct build_ref){{float_below(c.x), float_below(c.y), float_below(c.z)}, prim};
+    }
+    return all;
+}
+
+/* Primitive numbers in leaf order, and the triangles' corners next to them.
+ * One pass in slot order: the reads are scattered over the scene's arrays,
+ * but independent, so the processor overlaps their cache misses. */
+static void
+set_leaf_order(struct bvh *bvh, const struct world *w, const struct build_ref *refs)
+{
+    const struct scene *s = w->scene;
+    for (int slot = 0; slot < bvh->n_prims; slot++) {
+        int prim = refs[slot].prim;
+        bvh->prims[slot] = prim;
+        if (prim >= bvh->tri_begin && prim < bvh->tri_end) {
+            const struct triangle *tri = &s->triangles[prim - bvh->tri_begin];
+            vec3 *corners = &bvh->leaf_vertices[3 * (size_t)slot];
+            for (int k = 0; k < 3; k++) {
+                corners[k] = s->positions[tri->v[k]];
+            }
+        }
+    }
+}
+
+/* Bounds of the primitive in leaf slot `slot`. */
+static struct box
+slot_bounds(const struct bvh *bvh, const struct world *w, int slot)
+{
+    int prim = bvh->prims[slot];
+    if (prim < bvh->tri_begin || prim >= bvh->tri_end) {
+        return prim_bounds(w, prim);
+    }
+    const vec3 *p = &bvh->leaf_vertices[3 * (size_t)slot];
+    return triangle_bounds(p[0], p[1], p[2]);
+}
+
+/* A leaf's box: its primitives' bounds widened by the margin and rounded
+ * outward to float. */
+static void
+set_leaf_box(struct bvh_node *leaf, const struct bvh *bvh, const struct world *w, real margin)
+{
+    struct box b = box_empty();
+    for (uint32_t slot = leaf->index; slot < leaf->index + leaf->count; slot++) {
+        b = box_union(b, slot_bounds(bvh, w, (int)slot));
+    }
+    for (int i = 0; i < 3; i++) {
+        leaf->lo[i] = float_below(vec3_axis(b.lo, i) - margin);
+        leaf->hi[i] = float_above(vec3_axis(b.hi, i) + margin);
+    }
+}
+
+/* Every node's box, children before parents: in depth-first order both
+ * children come after their parent, so one backward pass suffices. */
+static void
+set_boxes(struct bvh *bvh, const struct world *w, real margin)
+{
+    for (int id = bvh->n_nodes - 1; id >= 0; id--) {
+        struct bvh_node *node = &bvh->nodes[id];
+        if (node->count > 0) {
+            set_leaf_box(node, bvh, w, margin);
+            continue;
+        }
+        const struct bvh_node *a = &bvh->nodes[id + 1];
+        const struct bvh_node *b = &bvh->nodes[node->index];
+        for (int i = 0; i < 3; i++) {
+            node->lo[i] = a->lo[i] < b->lo[i] ? a->lo[i] : b->lo[i];
+            node->hi[i] = a->hi[i] > b->hi[i] ? a->hi[i] : b->hi[i];
+        }
+    }
+}
+
+static real
+margin_for(struct box all)
+{
+    real scale = fmax(vec3_max_comp(vec3_abs(all.lo)), vec3_max_comp(vec3_abs(all.hi)));
+    return scale * (MARGIN_EPSILONS * REAL_EPSILON);
+}
+
+/* malloc(count * size), or NULL when that overflows. */
+static void *
+alloc_array(size_t count, size_t size)
+{
+    return count > SIZE_MAX / size ? NULL : malloc(count * size);
+}
+
+/* A median split of n >= 1 primitives makes at most 2n - 1 nodes. */
+static bool
+allocate(struct bvh *bvh, int n, struct build_ref **refs)
+{
+    size_t count = (size_t)n;
+    bvh->nodes = alloc_array(2 * count - 1, sizeof *bvh->nodes);
+    bvh->prims = alloc_array(count, sizeof *bvh->prims);
+    *refs = alloc_array(count, sizeof **refs);
+    bool ok = bvh->nodes && bvh->prims && *refs;
+    if (bvh->tri_end > bvh->tri_begin) {
+        bvh->leaf_vertices = alloc_array(3 * count, sizeof *bvh->leaf_vertices);
+        ok = ok && bvh->leaf_vertices;
+    }
+    return ok;
+}
+
+/* Give back the unused part of the node array; record the leaf sizes and
+ * the memory held. */
+static void
+summarize(struct bvh *bvh)
+{
+    size_t count = (size_t)bvh->n_nodes;
+    struct bvh_node *nodes = realloc(bvh->nodes, count * sizeof *nodes);
+    bvh->nodes = nodes ? nodes : bvh->nodes;
+    for (int id = 0; id < bvh->n_nodes; id++) {
+        int n = bvh->nodes[id].count;
+        bvh->n_leaves += n > 0;
+        bvh->max_leaf = n > bvh->max_leaf ? n : bvh->max_leaf;
+    }
+    bvh->mean_leaf = (double)bvh->n_prims / bvh->n_leaves;
+    bvh->bytes = count * sizeof *bvh->nodes + (size_t)bvh->n_prims * sizeof *bvh->prims;
+    if (bvh->leaf_vertices) {
+        bvh->bytes += 3 * (size_t)bvh->n_prims * sizeof *bvh->leaf_vertices;
+    }
+}
+
+bool
+bvh_build(struct bvh *bvh, const struct world *w, struct diag *err)
+{
+    const struct scene *s = w->scene;
+    int tri_begin = s->n_spheres + s->n_quads;
+    *bvh = (struct bvh){.tri_begin = tri_begin, .tri_end = tri_begin + s->n_triangles};
+    if (w->n_prims <= 0) {
+        return true;
+    }
+    struct build_ref *refs = NULL;
+    if (!allocate(bvh, w->n_prims, &refs)) {
+        diag_set(err, NULL, 0, 0, "out of memory building a BVH over %d primitives", w->n_prims);
+        free(refs);
+        bvh_free(bvh);
+        return false;
+    }
+    bvh->n_prims = w->n_prims;
+    struct builder b = {.bvh = bvh, .refs = refs};
+    real margin = margin_for(make_refs(w, refs));
+    build_subtree(&b, 0, w->n_prims, 1);
+    assert(bvh->depth <= BVH_MAX_DEPTH);
+    set_leaf_order(bvh, w, refs);
+    free(refs);
+    set_boxes(bvh, w, margin);
+    summarize(bvh);
+    return true;
+}
+
+void
+bvh_free(struct bvh *bvh)
+{
+    free(bvh->nodes);
+    free(bvh->prims);
+    free(bvh->leaf_vertices);
+    *bvh = (struct bvh){.nodes = NULL};
+}
+
+/* --- traversal ------------------------------------------------------------ */
+
+/* A ray prepared for slab tests. */
+struct slab_ray {
+    real o[3];
+    real inv_d[3];     /* 1/d on the axes the ray is not parallel to */
+    bool parallel[3];  /* d = 0 (or so small that 1/d overflows) */
+    bool enters_hi[3]; /* d < 0: the ray enters a slab through hi */
+};
+
+static struct slab_ray
+slab_ray_make(ray r)
+{
+    struct slab_ray sr;
+    for (int i = 0; i < 3; i++) {
+        real d = vec3_axis(r.d, i);
+        sr.o[i] = vec3_axis(r.o, i);
+        sr.inv_d[i] = 1 / d;
+        sr.parallel[i] = !(fabs(sr.inv_d[i]) <= REAL_MAX);
+        sr.enters_hi[i] = d < 0;
+    }
+    return sr;
+}
+
+/*
+ * Narrow [*t_near, *t_far] to the t where the ray is inside the slab
+ * lo <= x <= hi of one axis: between (lo - o) / d and (hi - o) / d (Kay and
+ * Kajiya's slabs).  A ray parallel to the slab is inside it for every t or
+ * for none.  Testing that case on its own, instead of letting 1/d be
+ * infinite as Williams et al. do, keeps the test free of 0 * infinity = NaN
+ * (an origin exactly on the slab's plane): no NaN ever reaches a comparison,
+ * and a ray running in a box's face counts as inside the box, which is
+ * closed.  (|d| < 1/REAL_MAX counts as parallel: over any distance at which
+ * a float box can lie, such a ray moves less than 1e-200.)
+ */
+static inline void
+clip_slab(real lo, real hi, const struct slab_ray *sr, int i, real *t_near, real *t_far)
+{
+    if (sr->parallel[i]) {
+        bool inside = lo <= sr->o[i] && sr->o[i] <= hi;
+        *t_far = inside ? *t_far : -1;
+        return;
+    }
+    real t_enter = ((sr->enters_hi[i] ? hi : lo) - sr->o[i]) * sr->inv_d[i];
+    real t_leave = ((sr->enters_hi[i] ? lo : hi) - sr->o[i]) * sr->inv_d[i];
+    *t_near = t_enter > *t_near ? t_enter : *t_near;
+    *t_far = t_leave < *t_far ? t_leave : *t_far;
+}
+
+/* Where the ray enters the node's box, if it meets the box at some t in
+ * [0, t_limit]: the three slabs' intervals intersected. */
+static inline bool
+ray_box_entry(const struct bvh_node *node, const struct slab_ray *sr, real t_limit, real *entry)
+{
+    real t_near = 0;
+    real t_far = t_limit;
+    clip_slab(node->lo[0], node->hi[0], sr, 0, &t_near, &t_far);
+    clip_slab(node->lo[1], node->hi[1], sr, 1, &t_near, &t_far);
+    clip_slab(node->lo[2], node->hi[2], sr, 2, &t_near, &t_far);
+    *entry = t_near;
+    return t_near <= t_far;
+}
+
+/* Intersect the primitive in leaf slot `slot`, exactly as intersect_prim
+ * would: triangles from the leaf-ordered copy of their corners (the same
+ * numbers, so the same result), anything else through intersect_prim. */
+static inline bool
+intersect_slot(
+    const struct bvh *bvh,
+    const struct world *w,
+    uint32_t slot,
+    ray r,
+    real t_max,
+    struct hit *out)
+{
+    int prim = bvh->prims[slot];
+    if (prim < bvh->tri_begin || prim >= bvh->tri_end) {
+        return intersect_prim(w->scene, prim, r, t_max, out);
+    }
+    const vec3 *p = &bvh->leaf_vertices[3 * (size_t)slot];
+    real t = 0;
+    real u = 0;
+    real v = 0;
+    if (!intersect_triangle(p[0], p[1], p[2], r, t_max, &t, &u, &v)) {
+        return false;
+    }
+    out->t = t;
+    out->u = u;
+    out->v = v;
+    out->prim = prim;
+    return true;
+}
+
+/*
+ * A traversal in progress: the nodes still to visit, each with the t where
+ * the ray enters it, and the counters for struct stats.  The stack holds at
+ * most one node per level (the far child of each node on the current path).
+ */
+struct traversal {
+    struct slab_ray sr;
+    struct {
+        uint32_t id;
+        real t_entry;
+    } stack[BVH_MAX_DEPTH];
+    int top;
+    uint64_t visits, tests;
+};
+
+/*
+ * Test the children of interior node `id` against the ray (up to t_limit):
+ * returns the child to visit next, or UINT32_MAX when the ray misses both,
+ * and pushes the other child when both are hit.  The near child is the one
+ * on the side of the split plane the ray comes from.
+ */
+static inline uint32_t
+descend(const struct bvh *bvh, uint32_t id, real t_limit, struct traversal *tr)
+{
+    const struct bvh_node *node = &bvh->nodes[id];
+    bool second_first = tr->sr.enters_hi[node->axis];
+    uint32_t near = second_first ? node->index : id + 1;
+    uint32_t far = second_first ? id + 1 : node->index;
+    real t_near_child;
+    real t_far_child;
+    bool hit_near = ray_box_entry(&bvh->nodes[near], &tr->sr, t_limit, &t_near_child);
+    bool hit_far = ray_box_entry(&bvh->nodes[far], &tr->sr, t_limit, &t_far_child);
+    tr->visits += 2;
+    if (hit_near && hit_far) {
+        tr->stack[tr->top].id = far;
+        tr->stack[tr->top++].t_entry = t_far_child;
+    }
+    return hit_near ? near : hit_far ? far : UINT32_MAX;
+}
+
+/* The next node from the stack that the ray enters no later than t_limit,
+ * or UINT32_MAX when none is left. */
+static inline uint32_t
+pop(struct traversal *tr, real t_limit)
+{
+    while (tr->top > 0) {
+        tr->top--;
+        if (tr->stack[tr->top].t_entry <= t_limit) {
+            return tr->stack[tr->top].id;
+        }
+    }
+    return UINT32_MAX;
+}
+
+/*
+ * The closest hit so far.  Brute force keeps the first of equal t in
+ * numbering order; the BVH meets primitives in another order, so after a hit
+ * at t it tests primitives up to just above t (t_prim = the next real after
+ * t) and lets an equal t replace the best when its primitive number is
+ * lower.  Boxes are entered up to t itself (t_box): a box entered after it
+ * holds nothing as close.
+ */
+struct closest {
+    struct hit *out;
+    bool found;
+    real t_box;
+    real t_prim;
+};
+
+static void
+closest_in_leaf(
+    const struct bvh *bvh,
+    const struct world *w,
+    const struct bvh_node *leaf,
+    ray r,
+    struct closest *c)
+{
+    struct hit h;
+    for (uint32_t slot = leaf->index; slot < leaf->index + leaf->count; slot++) {
+        if (!intersect_slot(bvh, w, slot, r, c->t_prim, &h)) {
+            continue;
+        }
+        if (!c->found || h.t < c->out->t || h.prim < c->out->prim) {
+            c->out->t = h.t;
+            c->out->u = h.u;
+            c->out->v = h.v;
+            c->out->prim = h.prim;
+            c->found = true;
+            c->t_box = h.t;
+            c->t_prim = nextafter(h.t, (real)INFINITY);
+        }
+    }
+}
+
+bool
+bvh_intersect(
+    const struct bvh *bvh,
+    const struct world *w,
+    ray r,
+    real t_max,
+    struct hit *out,
+    struct stats *st)
+{
+    struct closest c = {.out = out, .t_box = t_max, .t_prim = t_max};
+    struct traversal tr = {.sr = slab_ray_make(r)};
+    real t_root;
+    uint32_t id = UINT32_MAX;
+    if (bvh->n_nodes > 0 && ray_box_entry(&bvh->nodes[0], &tr.sr, t_max, &t_root)) {
+        id = 0;
+    }
+    tr.visits = bvh->n_nodes > 0;
+    while (id != UINT32_MAX) {
+        const struct bvh_node *node = &bvh->nodes[id];
+        if (node->count == 0) {
+            id = descend(bvh, id, c.t_box, &tr);
+            id = id != UINT32_MAX ? id : pop(&tr, c.t_box);
+            continue;
+        }
+        closest_in_leaf(bvh, w, node, r, &c);
+        tr.tests += node->count;
+        id = pop(&tr, c.t_box);
+    }
+    st->node_visits += tr.visits;
+    st->prim_tests += tr.tests;
+    return c.found;
+}
+
+static bool
+any_in_leaf(
+    const struct bvh *bvh,
+    const struct world *w,
+    const struct bvh_node *leaf,
+    ray r,
+    real t_max,
+    struct traversal *tr)
+{
+    struct hit h;
+    for (uint32_t slot = leaf->index; slot < leaf->index + leaf->count; slot++) {
+        tr->tests++;
+        if (intersect_slot(bvh, w, slot, r, t_max, &h)) {
+            return true;
+        }
+    }
+    return false;
+}
+
+bool
+bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, struct stats *st)
+{
+    struct traversal tr = {.sr = slab_ray_make(r)};
+    real t_root;
+    uint32_t id = UINT32_MAX;
+    if (bvh->n_nodes > 0 && ray_box_entry(&bvh->nodes[0], &tr.sr, t_max, &t_root)) {
+        id = 0;
+    }
+    tr.visits = bvh->n_nodes > 0;
+    bool hit = false;
+    while (id != UINT32_MAX && !hit) {
+        const struct bvh_node *node = &bvh->nodes[id];
+        if (node->count == 0) {
+            id = descend(bvh, id, t_max, &tr);
+            id = id != UINT32_MAX ? id : pop(&tr, t_max);
+            continue;
+        }
+        hit = any_in_leaf(bvh, w, node, r, t_max, &tr);
+        id = pop(&tr, t_max);
+    }
+    st->node_visits += tr.visits;
+    st->prim_tests += tr.tests;
+    return hit;
+}

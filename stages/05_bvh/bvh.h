@@ -1,0 +1,90 @@
+/*
+ * bvh.h - a bounding volume hierarchy over the world's primitives, so that a
+ * ray tests about log2(n) boxes and a few primitives instead of all n.
+ *
+ * The tree is built by median split: a node's primitives are cut in two
+ * halves of equal count along the longest axis of their centroids' bounds,
+ * until at most BVH_MAX_LEAF remain.  The answer is exactly the brute-force
+ * answer of world_intersect: the same primitive and the same t, bit for bit,
+ * ties going to the lowest primitive number.
+ *
+ * Memory layout: the nodes are one array in depth-first order.  An interior
+ * node's first child is the next node; its second child is nodes[index].  A
+ * leaf holds prims[index .. index + count), primitive numbers in the world's
+ * numbering (spheres, quads, triangles, then area lights).
+ */
+#ifndef BVH_H
+#define BVH_H
+
+#include <assert.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "diag.h"
+#include "stats.h"
+#include "vec3.h"
+
+/* Most primitives in a leaf.  Measured on the 1.08M-triangle Buddha (see
+ * tests/bench/README.md): 2 traces fastest; 1 doubles the nodes for ~4% more
+ * speed on shadow rays only, 4 is ~20% slower. */
+#ifndef BVH_MAX_LEAF
+#define BVH_MAX_LEAF 2
+#endif
+
+/* Deepest tree the traversal stack holds.  A median split halves the count
+ * at every level, so n primitives need about log2(n) levels: 32 for 2^31. */
+#define BVH_MAX_DEPTH 64
+
+struct world; /* geometry.h */
+struct hit;
+
+struct bvh_node {
+    float lo[3], hi[3]; /* bounds, rounded outward: they contain the primitives exactly */
+    uint32_t index;     /* interior: the second child; leaf: the first slot of prims */
+    uint16_t count;     /* primitives in a leaf; 0 for an interior node */
+    uint8_t axis;       /* interior: the split axis (0 x, 1 y, 2 z) */
+    uint8_t flags;      /* unused, 0 */
+};
+
+static_assert(sizeof(struct bvh_node) == 32, "two nodes per 64-byte cache line");
+
+struct bvh {
+    struct bvh_node *nodes; /* nodes[0] is the root */
+    int n_nodes;
+    int *prims;             /* primitive numbers in leaf order */
+    int n_prims;
+    int depth;              /* levels, the root being level 1 */
+    int max_leaf;           /* most primitives in one leaf */
+    double mean_leaf;       /* mean primitives per leaf */
+    int n_leaves;
+    size_t bytes;           /* memory held by the structure */
+    /* Triangles' corners copied in leaf order (3 per slot of prims; unused
+     * for other primitives), so a leaf's triangles are read from one place
+     * instead of through three index arrays.  NULL when there are none. */
+    vec3 *leaf_vertices;
+    int tri_begin, tri_end; /* the triangles' primitive numbers */
+};
+
+/* Build the hierarchy over w's primitives (zero primitives is allowed).
+ * Fills bvh; false with err set when memory runs out (bvh is left empty). */
+bool bvh_build(struct bvh *bvh, const struct world *w, struct diag *err);
+
+/* Free; accepts a zero-initialised or freed bvh. */
+void bvh_free(struct bvh *bvh);
+
+/* The closest hit along r with t in (0, t_max), ties to the lowest primitive
+ * number: t, u, v and prim filled as intersect_prim does; not finished
+ * (hit_finish does that).  False on a miss. */
+bool bvh_intersect(
+    const struct bvh *bvh,
+    const struct world *w,
+    ray r,
+    real t_max,
+    struct hit *out,
+    struct stats *st);
+
+/* True when any primitive is hit with t in (0, t_max); stops at the first. */
+bool bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, struct stats *st);
+
+#endif /* BVH_H */

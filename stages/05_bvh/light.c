@@ -1,0 +1,213 @@
+/*
+ * light.c - direct light from point lights, blocked by anything in between,
+ * and from area lights, estimated with shadow rays to points sampled over
+ * their area: soft shadows.  Glass dims a shadow ray instead of blocking it.
+ */
+#include "light.h"
+
+#include "optics.h"
+
+vec3
+point_irradiance(const struct hit *h, vec3 from, vec3 intensity)
+{
+    vec3 to_light = vec3_sub(from, h->p);
+    real dist2 = vec3_length2(to_light);
+    real cos_theta = vec3_dot(h->n, to_light);
+    if (!(cos_theta > 0 && dist2 > 0)) {
+        return vec3_splat(0);
+    }
+    /* cos(theta) = n.l / |l|, so I cos / r^2 = I (n.l) / |l|^3. */
+    return vec3_scale(intensity, cos_theta / (dist2 * sqrt(dist2)));
+}
+
+vec3
+sample_area_light(const struct area_light *light, real u, real v)
+{
+    return vec3_madd(vec3_madd(light->corner, light->edge1, u), light->edge2, v);
+}
+
+bool
+visible(const struct world *w, const struct hit *h, vec3 to, struct stats *st)
+{
+    real t_max;
+    ray shadow = spawn_ray_to(h, to, &t_max);
+    st->rays_shadow++;
+    return !world_occluded(w, shadow, t_max, st);
+}
+
+/* Glass boundaries a shadow ray may cross before it counts as blocked. */
+#define MAX_GLASS_CROSSINGS 32
+
+vec3
+transmittance(const struct world *w, const struct hit *h, vec3 to, struct stats *st)
+{
+    const struct scene *s = w->scene;
+    if (!(s->features & FEATURE_BIT(FEAT_GLASS))) {
+        return vec3_splat(visible(w, h, to, st) ? 1 : 0);
+    }
+    vec3 t = vec3_splat(1);
+    struct hit at = *h;
+    for (int crossing = 0; crossing < MAX_GLASS_CROSSINGS; crossing++) {
+        real t_max;
+        ray shadow = spawn_ray_to(&at, to, &t_max);
+        st->rays_shadow++;
+        if (!world_intersect(w, shadow, t_max, &at, st)) {
+            return t;
+        }
+        const struct material *m = at.light < 0 ? &s->materials[at.material] : NULL;
+        if (!m || m->kind != MAT_GLASS) {
+            return vec3_splat(0);
+        }
+        real eta = at.front_face ? 1 / m->ior : m->ior;
+        real f = fresnel_dielectric(-vec3_dot(shadow.d, at.ng), eta);
+        t = vec3_scale(t, 1 - f);
+    }
+    return vec3_splat(0);
+}
+
+/* One sample of the area light's irradiance at h from its point y:
+ * L cos(theta) cos(theta') / r^2 * A (the estimator of E = integral over the
+ * light of L cos cos' / r^2 dA, with y drawn with density 1/A), zero when
+ * the light faces away or is blocked.  *blocked tells which of the two. */
+static vec3
+light_sample_irradiance(const struct world *w, const struct hit *h,
+    const struct area_light *light, vec3 y, struct stats *st, bool *blocked)
+{
+    vec3 to_light = vec3_sub(y, h->p);
+    real dist2 = vec3_length2(to_light);
+    real dist = sqrt(dist2);
+    real cos_surface = vec3_dot(h->n, to_light) / dist;
+    real cos_light = -vec3_dot(area_light_normal(light), to_light) / dist;
+    *blocked = false;
+    if (!(cos_surface > 0 && cos_light > 0)) {
+        return vec3_splat(0);
+    }
+    vec3 through = transmittance(w, h, y, st);
+    *blocked = through.x < 1 || through.y < 1 || through.z < 1;
+    real geometry = cos_surface * cos_light / dist2;
+    return vec3_mul(through, vec3_scale(light->radiance, geometry * area_light_area(light)));
+}
+
+/* The sum of n samples of the light's irradiance, one in each cell of a
+ * k x m grid over the light (jittered stratification: each sample is
+ * unbiased, so their mean is, and no two crowd together).  *n_blocked
+ * counts the samples the light was blocked for. */
+static vec3
+sum_light_samples(const struct world *w, const struct hit *h, const struct area_light *light,
+    int n, struct rng *rng, struct stats *st, int *n_blocked)
+{
+    int k = strata_columns(n);
+    int m = n / k;
+    vec3 sum = vec3_splat(0);
+    for (int i = 0; i < n; i++) {
+        real u = ((real)(i % k) + rng_uniform(rng)) / (real)k;
+        real v = ((real)(i / k) + rng_uniform(rng)) / (real)m;
+        bool blocked;
+        vec3 y = sample_area_light(light, u, v);
+        sum = vec3_add(sum, light_sample_irradiance(w, h, light, y, st, &blocked));
+        *n_blocked += blocked;
+    }
+    return sum;
+}
+
+/* Clip a convex polygon to the half-space above the plane through p with
+ * normal n (Sutherland and Hodgman, 1974).  Returns the new vertex count
+ * (at most n_in + 1). */
+static int
+clip_above(const vec3 *in, int n_in, vec3 p, vec3 n, vec3 *out)
+{
+    int n_out = 0;
+    for (int i = 0; i < n_in; i++) {
+        vec3 a = in[i];
+        vec3 b = in[(i + 1) % n_in];
+        real da = vec3_dot(n, vec3_sub(a, p));
+        real db = vec3_dot(n, vec3_sub(b, p));
+        if (da >= 0) {
+            out[n_out++] = a;
+        }
+        if ((da >= 0) != (db >= 0)) {
+            out[n_out++] = vec3_lerp(a, b, da / (da - db));
+        }
+    }
+    return n_out;
+}
+
+/* The irradiance the light gives h when nothing is in the way, in closed
+ * form: for a polygon of constant radiance L seen from a point with normal n,
+ *     E = L/2 * | sum_i theta_i n . g_i |,
+ * theta_i the angle the edge (v_i, v_i+1) subtends and g_i the unit normal
+ * of the plane through the point and that edge (Lambert, 1760; Arvo,
+ * "Applications of Irradiance Tensors", 1995).  The part of the light below
+ * the surface's horizon is clipped away first. */
+static vec3
+unoccluded_irradiance(const struct hit *h, const struct area_light *light)
+{
+    if (vec3_dot(area_light_normal(light), vec3_sub(h->p, light->corner)) <= 0) {
+        return vec3_splat(0); /* behind the one-sided light */
+    }
+    vec3 corners[4] = {light->corner, vec3_add(light->corner, light->edge1),
+        vec3_add(vec3_add(light->corner, light->edge1), light->edge2),
+        vec3_add(light->corner, light->edge2)};
+    vec3 poly[5];
+    int n = clip_above(corners, 4, h->p, h->n, poly);
+    real sum = 0;
+    for (int i = 0; i < n; i++) {
+        vec3 a = vec3_sub(poly[i], h->p);
+        vec3 b = vec3_sub(poly[(i + 1) % n], h->p);
+        vec3 g = vec3_cross(a, b);
+        real g_len = vec3_length(g);
+        if (g_len > 0) {
+            real theta = atan2(g_len, vec3_dot(a, b));
+            sum += theta * vec3_dot(h->n, g) / g_len;
+        }
+    }
+    return vec3_scale(light->radiance, fabs(sum) / 2);
+}
+
+/* Irradiance from one area light.  Adaptive mode (as classic renderers do):
+ * a few probe rays; if they agree, the point is taken as fully shadowed (0)
+ * or fully lit (the exact unoccluded irradiance: no noise at all); otherwise
+ * it is in a penumbra and gets more samples, averaged with the probes.  The
+ * price is a bias where a thin shadow slips between all the probes. */
+static vec3
+area_light_irradiance(const struct world *w, const struct hit *h, const struct area_light *light,
+    const struct shadow_sampling *sampling, struct rng *rng, struct stats *st)
+{
+    int blocked = 0;
+    if (sampling->adaptive[0] == 0) {
+        vec3 sum = sum_light_samples(w, h, light, sampling->samples, rng, st, &blocked);
+        return vec3_scale(sum, 1 / (real)sampling->samples);
+    }
+    int probes = sampling->adaptive[0];
+    vec3 sum = sum_light_samples(w, h, light, probes, rng, st, &blocked);
+    if (blocked == probes) {
+        return vec3_splat(0);
+    }
+    if (blocked == 0) {
+        return unoccluded_irradiance(h, light);
+    }
+    st->extra[STAT_PENUMBRA]++;
+    int more = sampling->adaptive[1];
+    sum = vec3_add(sum, sum_light_samples(w, h, light, more, rng, st, &blocked));
+    return vec3_scale(sum, 1 / (real)(probes + more));
+}
+
+vec3
+direct_irradiance(const struct world *w, const struct hit *h,
+    const struct shadow_sampling *sampling, struct rng *rng, struct stats *st)
+{
+    const struct scene *s = w->scene;
+    vec3 e = vec3_splat(0);
+    for (int i = 0; i < s->n_point_lights; i++) {
+        const struct point_light *light = &s->point_lights[i];
+        vec3 irradiance = point_irradiance(h, light->position, light->intensity);
+        if (!vec3_is_zero(irradiance)) {
+            e = vec3_add(e, vec3_mul(irradiance, transmittance(w, h, light->position, st)));
+        }
+    }
+    for (int i = 0; i < s->n_area_lights; i++) {
+        const struct area_light *light = &s->area_lights[i];
+        e = vec3_add(e, area_light_irradiance(w, h, light, sampling, rng, st));
+    }
+    return e;
+}

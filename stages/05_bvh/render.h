@@ -1,0 +1,42 @@
+/*
+ * render.h - what this stage computes: the radiance arriving at the camera
+ * through each pixel.
+ */
+#ifndef RENDER_H
+#define RENDER_H
+
+#include "camera.h"
+#include "geometry.h"
+#include "light.h"
+#include "rng.h"
+#include "scene.h"
+#include "stats.h"
+#include "vec3.h"
+
+/* The scene features this stage models (see feature_table.h). */
+#define RENDER_FEATURES                                                                        \
+    (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_AMBIENT) | FEATURE_BIT(FEAT_MESH)          \
+        | FEATURE_BIT(FEAT_AREA_LIGHT) | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS)       \
+        | FEATURE_BIT(FEAT_BLEND) | FEATURE_BIT(FEAT_CHECKER))
+
+struct renderer {
+    const struct scene *scene;
+    struct world world;
+    struct camera camera;
+    struct shadow_sampling shadow;
+    int max_depth; /* longest chain of rays, the camera ray included */
+};
+
+/* Radiance leaving the surface at h (where r hit it) towards r's origin;
+ * r is the depth-th ray of its chain. */
+vec3 shade(const struct renderer *renderer, ray r, const struct hit *h, int depth, struct rng *rng,
+    struct stats *st);
+
+/* Radiance arriving at r.o from direction -r.d; r is the depth-th ray of
+ * its chain (the camera ray is 1); chains end at max_depth rays. */
+vec3 trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct stats *st);
+
+/* The driver's pixel function (driver.h): one ray through the pixel centre. */
+vec3 render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st);
+
+#endif /* RENDER_H */
