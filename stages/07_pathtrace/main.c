@@ -154,6 +154,18 @@ build_acceleration(struct renderer *renderer, bool use_bvh, struct report *rep, 
     return true;
 }
 
+/* Samples per pixel in one pass: the largest divisor of spp up to 16, so
+ * a pass is short (a Ctrl-C loses little) yet stratified. */
+static int
+samples_per_pass(int spp)
+{
+    int per_pass = spp < 16 ? spp : 16;
+    while (spp % per_pass != 0) {
+        per_pass--;
+    }
+    return per_pass;
+}
+
 static int
 render_and_write(struct renderer *renderer, const struct options *opt, const char *output,
     struct report *rep, double start)
@@ -161,16 +173,19 @@ render_and_write(struct renderer *renderer, const struct options *opt, const cha
     const struct scene *scene = renderer->scene;
     struct render_job job = {
         .threads = cli_thread_count(opt),
-        .passes = renderer->spp,
+        .passes = 1,
         .time_limit = renderer->time_limit,
         .seed = opt->seed,
         .progress = !opt->quiet && isatty(STDERR_FILENO),
         .pixel = render_pixel,
         .ctx = renderer,
     };
-    /* Progressive: each pass adds one sample to every pixel, so the image
-     * can be stopped (Ctrl-C, --time) after any pass. */
-    renderer->spp = 1;
+    /* Progressive: the image is built in passes of a few samples per pixel,
+     * each placed by the --aa pattern, so it can be stopped (Ctrl-C,
+     * --time) after any pass. */
+    int per_pass = samples_per_pass(renderer->spp);
+    job.passes = renderer->spp / per_pass;
+    renderer->spp = per_pass;
     image_size(scene, opt, &job.width, &job.height);
     renderer->camera = camera_make(&scene->camera, job.width, job.height);
     struct image image = {0};

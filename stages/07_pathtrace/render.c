@@ -90,6 +90,11 @@ shade(const struct renderer *renderer, ray *r, const struct hit *h, struct path 
         path->beta = vec3_splat(0);
         return l;
     }
+    if (path->depth >= renderer->max_depth) {
+        /* No ray may follow this vertex: not a shadow ray, not a bounce. */
+        path->beta = vec3_splat(0);
+        return vec3_splat(0);
+    }
     const struct material *m = &s->materials[h->material];
     vec3 albedo = diffuse_albedo(m, h);
     vec3 l = vec3_splat(0);

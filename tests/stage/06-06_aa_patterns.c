@@ -1,0 +1,380 @@
+/*
+ * 06_aa_patterns.c - the three camera sampling patterns of --aa do what
+ * stage 06 says they do (render.c and render.h: grid, the centres of the
+ * cells of a grid over the pixel; jitter, a uniform point in each cell;
+ * adaptive, a few jittered probes and all spp samples only where they
+ * disagree), in every stage that offers --aa.
+ *
+ *  - Stratification (TESTING.md T19, Mitchell, "Consequences of Stratified
+ *    Sampling in Graphics", SIGGRAPH 96): on pixels crossed by a straight
+ *    edge, the mean squared error of jittered sampling falls about as
+ *    N^-1.5, faster than the N^-1 of independent samples.  Measured over
+ *    spp 4, 16, 64, 256 and 8 seeds; the fitted log-log slope must be
+ *    below -1.3.
+ *  - Grid: with --aa grid --spp 16 a pixel is exactly the fraction of its
+ *    16 cell centres ((i + 1/2) / 4, (j + 1/2) / 4) the light covers.
+ *  - Aliasing: a checkerboard finer than the grid's sample spacing
+ *    (squares of 0.127 pixel; grid samples 0.25 pixel apart at 16 spp).
+ *    The grid samples it at nearly the same phase in every pixel and beats
+ *    against it: a moire of period ~16 pixels and amplitude up to half the
+ *    contrast.  Jitter turns that into fine-grained noise.  The
+ *    low-frequency error - the RMS over 8x8 blocks of the block mean minus
+ *    the true mean - must be at least 4 times larger for the grid.
+ *  - Adaptive: --aa adaptive --spp 64 refines some pixels but not all
+ *    (aa_refined_pixels), only pixels the edge crosses (a pixel left alone
+ *    has 4 agreeing probes: exactly 0 or 1), spends 4 + 60 camera rays on
+ *    those and 4 on the others (under 20% of full sampling's), is within
+ *    2x of full sampling's error on the refined pixels, and beats uniform
+ *    jittered sampling at a similar cost (4 spp) over the whole image.
+ *    It does not match full sampling over the whole image: 4 probes miss
+ *    pixels the light covers only a sliver of (measured RMS error 0.012,
+ *    full 64 spp 0.0023, uniform 4 spp 0.018).
+ */
+#include "check.h"
+#include "pathcheck.h"
+#include "stagecheck.h"
+#include "testlib.h"
+
+static const struct pathcheck_edge edge = {64, 31.37, 32.81, 0.4};
+
+/* Mean squared error over the pixels the edge crosses (0 < c < 1); their
+ * number in *n. */
+static double
+edge_mse(const struct image *img, const struct pathcheck_edge *e, int *n)
+{
+    double sum = 0;
+    *n = 0;
+    for (int y = 0; y < img->height; y++) {
+        for (int x = 0; x < img->width; x++) {
+            double c = pathcheck_edge_coverage(e, x, y);
+            if (c > 0 && c < 1) {
+                double d = image_pixel(img, x, y)[0] - c;
+                sum += d * d;
+                (*n)++;
+            }
+        }
+    }
+    return sum / *n;
+}
+
+TEST(jitter_error_falls_faster_than_independent_samples)
+{
+    static const int spps[] = {4, 16, 64, 256};
+
+    enum {
+        N_SPP = 4,
+        N_SEEDS = 8
+    };
+
+    const char *scene = pathcheck_edge_scene("edge.scene", &edge);
+    uint64_t seed = pathcheck_seed(602);
+    double lx[N_SPP];
+    double ly[N_SPP];
+    for (int i = 0; i < N_SPP; i++) {
+        char spp[16];
+        snprintf(spp, sizeof spp, "%d", spps[i]);
+        const char *const args[] = {"--aa", "jitter", "--spp", spp, NULL};
+        struct pathcheck_batches b;
+        if (!scene || !pathcheck_render_batches(scene, args, N_SEEDS, seed, &b)) {
+            CHECK(false);
+            return;
+        }
+        double mse = 0;
+        int n = 0;
+        for (int k = 0; k < b.k; k++) {
+            mse += edge_mse(&b.images[k], &edge, &n) / b.k;
+        }
+        printf(
+            "spp %3d: MSE over %d edge pixels and %d seeds %.3g (spp * MSE %.3g)\n",
+            spps[i],
+            n,
+            N_SEEDS,
+            mse,
+            mse * spps[i]);
+        CHECK(b.nan_pixels == 0);
+        lx[i] = log((double)spps[i]);
+        ly[i] = log(mse);
+        pathcheck_batches_free(&b);
+    }
+    /* Least-squares slope of log MSE against log spp. */
+    double mx = 0;
+    double my = 0;
+    for (int i = 0; i < N_SPP; i++) {
+        mx += lx[i] / N_SPP;
+        my += ly[i] / N_SPP;
+    }
+    double sxy = 0;
+    double sxx = 0;
+    for (int i = 0; i < N_SPP; i++) {
+        sxy += (lx[i] - mx) * (ly[i] - my);
+        sxx += (lx[i] - mx) * (lx[i] - mx);
+    }
+    double slope = sxy / sxx;
+    printf(
+        "log-log slope of the edge pixels' MSE: %.3f (independent samples: -1; "
+        "stratified: about -1.5; limit -1.3)\n",
+        slope);
+    CHECK_MSG(slope < -1.3, "slope %.3f: the jittered samples are not stratified", slope);
+}
+
+TEST(grid_samples_the_cell_centres)
+{
+    const char *scene = pathcheck_edge_scene("edge.scene", &edge);
+    const char *const args[] = {"--aa", "grid", "--spp", "16", NULL};
+    struct image img = {0};
+    const char *stats = NULL;
+    if (!scene || !pathcheck_render(scene, args, 1, &img, &stats)) {
+        CHECK(false);
+        return;
+    }
+    int wrong = 0;
+    int partial = 0;
+    double worst = 0;
+    for (int y = 0; y < img.height; y++) {
+        for (int x = 0; x < img.width; x++) {
+            int inside = 0;
+            for (int j = 0; j < 4; j++) {
+                for (int i = 0; i < 4; i++) {
+                    inside += pathcheck_edge_inside(&edge, x + (i + 0.5) / 4, y + (j + 0.5) / 4);
+                }
+            }
+            double d = fabs(image_pixel(&img, x, y)[0] - inside / 16.0);
+            worst = fmax(worst, d);
+            wrong += d > 1e-6;
+            partial += inside > 0 && inside < 16;
+        }
+    }
+    printf(
+        "--aa grid --spp 16: %d pixels differ from their covered cell-centre fraction "
+        "(largest difference %.4f); %d pixels partly covered\n",
+        wrong,
+        worst,
+        partial);
+    CHECK(partial > 50);
+    CHECK_MSG(wrong == 0, "%d pixels are not sampled at the 4x4 cell centres", wrong);
+    CHECK(stagecheck_stat(stats, "rays_camera") == 16.0 * img.width * img.height);
+    CHECK(stagecheck_stat(stats, "nan_pixels") == 0);
+    image_free(&img);
+}
+
+/* A checkerboard plane filling the view of a 64x64 camera, one scene unit
+ * per pixel (fov 90 at distance 32), squares of 0.127 units, albedos 0.9
+ * and 0.1.  Lit so that a square's radiance is its albedo in every stage:
+ * ambient 1 in the Whitted stages (L = albedo * ambient), a white
+ * environment in the path tracer (a plane sees only the sky: L = albedo *
+ * 1, every sample exactly). */
+static const char checker_scene[] =
+    "camera origin 0 0 0 target 0 0 -1 up 0 1 0 fov 90\n"
+    "image width 64 height 64\n"
+    "background color 1 1 1\n"
+    "ambient color 1 1 1\n"
+    "material board checker albedo 0.9 0.9 0.9 albedo2 0.1 0.1 0.1 size 0.127\n"
+    "quad corner -100 -100 -32 edge1 200 0 0 edge2 0 200 0 material board\n";
+
+#define CHECKER_MEAN 0.5 /* (0.9 + 0.1) / 2 */
+
+/* RMS over 8x8 blocks of (block mean - CHECKER_MEAN).  A block spans 63
+ * squares a side, so its true mean is CHECKER_MEAN to within
+ * 0.4 * 0.127^2 / 64 = 1e-4. */
+static double
+low_frequency_error(const struct image *img)
+{
+    double sum = 0;
+    int n = 0;
+    for (int y = 0; y < img->height; y += 8) {
+        for (int x = 0; x < img->width; x += 8) {
+            double d = stagecheck_region_mean(img, x, y, 8, 8, 0) - CHECKER_MEAN;
+            sum += d * d;
+            n++;
+        }
+    }
+    return sqrt(sum / n);
+}
+
+TEST(grid_aliases_where_jitter_does_not)
+{
+    const char *scene = stagecheck_scene("checker.scene", "%s", checker_scene);
+    const char *const grid_args[] = {"--aa", "grid", "--spp", "16", NULL};
+    const char *const jitter_args[] = {"--aa", "jitter", "--spp", "16", NULL};
+    struct image grid = {0};
+    struct image jitter = {0};
+    const char *grid_stats = NULL;
+    const char *jitter_stats = NULL;
+    uint64_t seed = pathcheck_seed(602);
+    if (!scene || !pathcheck_render(scene, grid_args, seed, &grid, &grid_stats)
+        || !pathcheck_render(scene, jitter_args, seed, &jitter, &jitter_stats)) {
+        CHECK(false);
+        image_free(&grid);
+        return;
+    }
+    double e_grid = low_frequency_error(&grid);
+    double e_jitter = low_frequency_error(&jitter);
+    double mean_grid[3];
+    double mean_jitter[3];
+    metrics_mean(&grid, NULL, mean_grid);
+    metrics_mean(&jitter, NULL, mean_jitter);
+    /* Jitter's expected block error: 16 strata each a coin toss between
+     * 0.9 and 0.1 (sd 0.4), 64 pixels: 0.4 / sqrt(16 * 64) = 0.0125. */
+    printf(
+        "fine checker, 16 spp: low-frequency (8x8 block) RMS error: grid %.4f, jitter %.4f "
+        "(noise alone: about 0.0125); image mean: grid %.4f, jitter %.4f (true 0.5)\n",
+        e_grid,
+        e_jitter,
+        mean_grid[0],
+        mean_jitter[0]);
+    printf(
+        "the grid's error is %s than jitter's: %s\n",
+        e_grid > e_jitter ? "larger" : "smaller",
+        e_grid > 4 * e_jitter ? "aliasing (moire)" : "no clear moire");
+    CHECK_MSG(e_grid > 4 * e_jitter, "grid %.4f, jitter %.4f", e_grid, e_jitter);
+    CHECK_MSG(e_jitter < 0.03, "jittered blocks off by %.4f: not noise alone", e_jitter);
+    CHECK(stagecheck_stat(grid_stats, "nan_pixels") == 0);
+    CHECK(stagecheck_stat(jitter_stats, "nan_pixels") == 0);
+    image_free(&grid);
+    image_free(&jitter);
+}
+
+/* Squared error against the exact coverage, summed over all pixels and
+ * over the pixels strictly between 0 and 1 (*sum_mixed, their number in
+ * *n_mixed). */
+static double
+coverage_sq_error(
+    const struct image *img,
+    const struct pathcheck_edge *e,
+    double *sum_mixed,
+    int *n_mixed)
+{
+    double sum = 0;
+    for (int y = 0; y < img->height; y++) {
+        for (int x = 0; x < img->width; x++) {
+            double v = image_pixel(img, x, y)[0];
+            double d = v - pathcheck_edge_coverage(e, x, y);
+            sum += d * d;
+            if (v > 0 && v < 1) {
+                *sum_mixed += d * d;
+                (*n_mixed)++;
+            }
+        }
+    }
+    return sum;
+}
+
+TEST(adaptive_refines_only_the_edge)
+{
+    /* Four seeds of adaptive sampling at 64 spp, of full jittered sampling
+     * at 64 spp, and of jittered sampling at 4 spp (fewer camera rays than
+     * adaptive spends). */
+    enum {
+        SEEDS = 4
+    };
+
+    const char *scene = pathcheck_edge_scene("edge.scene", &edge);
+    const char *const modes[3][5] = {
+        {"--aa", "adaptive", "--spp", "64", NULL},
+        {"--aa", "jitter", "--spp", "64", NULL},
+        {"--aa", "jitter", "--spp", "4", NULL},
+    };
+    double mse[3] = {0, 0, 0};
+    double rays[3] = {0, 0, 0};
+    double mixed_adaptive = 0; /* squared error over the pixels adaptive refined */
+    double mixed_full = 0; /* full jitter's over the same pixels */
+    double refined = 0;
+    int n_mixed = 0; /* pixels strictly between 0 and 1 in the adaptive renders */
+    double pixels = (double)edge.size * edge.size;
+    int n_edge = 0;
+    uint64_t seed = pathcheck_seed(602);
+    for (int s = 0; s < SEEDS; s++) {
+        struct image img[3] = {{0}, {0}, {0}};
+        const char *stats[3] = {NULL, NULL, NULL};
+        bool ok = scene != NULL;
+        for (int m = 0; m < 3 && ok; m++) {
+            ok = pathcheck_render(scene, modes[m], seed + (uint64_t)s, &img[m], &stats[m]);
+        }
+        if (!ok) {
+            CHECK(false);
+            for (int m = 0; m < 3; m++) {
+                image_free(&img[m]);
+            }
+            return;
+        }
+        /* A pixel adaptive sampling left alone has 4 agreeing probes, so it
+         * is exactly 0 or 1; a refined one saw both sides. */
+        int n_refined = 0;
+        double ignored = 0;
+        int ignored_n = 0;
+        double sum_a = coverage_sq_error(&img[0], &edge, &mixed_adaptive, &n_refined);
+        double r = stagecheck_stat(stats[0], "aa_refined_pixels");
+        CHECK_MSG(n_refined == r, "%d pixels between 0 and 1, %.0f refined", n_refined, r);
+        n_mixed += n_refined;
+        /* Full jitter's error on the pixels adaptive refined. */
+        for (int y = 0; y < edge.size; y++) {
+            for (int x = 0; x < edge.size; x++) {
+                double v = image_pixel(&img[0], x, y)[0];
+                if (v > 0 && v < 1) {
+                    double d = image_pixel(&img[1], x, y)[0] - pathcheck_edge_coverage(&edge, x, y);
+                    mixed_full += d * d;
+                }
+            }
+        }
+        mse[0] += sum_a / pixels / SEEDS;
+        mse[1] += coverage_sq_error(&img[1], &edge, &ignored, &ignored_n) / pixels / SEEDS;
+        mse[2] += coverage_sq_error(&img[2], &edge, &ignored, &ignored_n) / pixels / SEEDS;
+        for (int m = 0; m < 3; m++) {
+            rays[m] += stagecheck_stat(stats[m], "rays_camera") / SEEDS;
+            CHECK(stagecheck_stat(stats[m], "nan_pixels") == 0);
+        }
+        refined += r / SEEDS;
+        CHECK_MSG(r > 0 && r < pixels, "seed %d: %.0f of %.0f pixels refined", s, r, pixels);
+        CHECK_MSG(
+            stagecheck_stat(stats[0], "rays_camera") == 4 * pixels + 60 * r,
+            "seed %d: %.0f camera rays for %.0f refined pixels",
+            s,
+            stagecheck_stat(stats[0], "rays_camera"),
+            r);
+        edge_mse(&img[0], &edge, &n_edge);
+        for (int m = 0; m < 3; m++) {
+            image_free(&img[m]);
+        }
+    }
+    double rms_refined_a = sqrt(mixed_adaptive / n_mixed);
+    double rms_refined_j = sqrt(mixed_full / n_mixed);
+    printf(
+        "adaptive 64 spp: %.1f of %.0f pixels refined on average (%d crossed by the edge)\n",
+        refined,
+        pixels,
+        n_edge);
+    printf(
+        "  camera rays: adaptive %.0f, jitter 64 spp %.0f, jitter 4 spp %.0f\n",
+        rays[0],
+        rays[1],
+        rays[2]);
+    printf(
+        "  RMS error over all pixels: adaptive %.4f, jitter 64 spp %.4f, jitter 4 spp %.4f\n",
+        sqrt(mse[0]),
+        sqrt(mse[1]),
+        sqrt(mse[2]));
+    printf(
+        "  RMS error over the refined pixels: adaptive %.4f, jitter 64 spp %.4f\n",
+        rms_refined_a,
+        rms_refined_j);
+    printf("  (the 4 jittered probes miss edge pixels the light covers only a sliver of: "
+           "there adaptive keeps an error of up to the sliver's area)\n");
+    CHECK_MSG(refined >= 0.3 * n_edge, "only %.1f of %d edge pixels refined", refined, n_edge);
+    CHECK_MSG(rays[0] < 0.2 * rays[1], "%.0f camera rays, full sampling %.0f", rays[0], rays[1]);
+    /* Refined pixels are as good as full sampling (64 samples, 60 of them
+     * in a 7x7 jittered grid plus 11 unstratified: slightly noisier than
+     * the 8x8 grid). */
+    CHECK_MSG(
+        rms_refined_a < 2 * rms_refined_j,
+        "refined pixels: RMS %.4f, full jitter %.4f",
+        rms_refined_a,
+        rms_refined_j);
+    /* Overall it beats spending about as many rays evenly (4 spp). */
+    CHECK_MSG(mse[0] < mse[2], "adaptive MSE %.3g, jitter at 4 spp %.3g", mse[0], mse[2]);
+}
+
+TEST_MAIN(
+    TEST_ENTRY(jitter_error_falls_faster_than_independent_samples),
+    TEST_ENTRY(grid_samples_the_cell_centres),
+    TEST_ENTRY(grid_aliases_where_jitter_does_not),
+    TEST_ENTRY(adaptive_refines_only_the_edge))

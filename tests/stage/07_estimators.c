@@ -1,0 +1,277 @@
+/*
+ * 07_estimators.c - the path tracer's switches change the noise, never the
+ * expected image (TESTING.md T23, Nori's test-direct: one reference for
+ * every sampling strategy).
+ *
+ *  - Russian roulette and next-event estimation are unbiased: --no-rr and
+ *    --no-nee converge to the default's image.  Two-sample tests: K renders
+ *    of each (different seeds), per 16x16 block and channel and for the
+ *    whole image, Welch's t-test of the block means (pathcheck_block_welch),
+ *    on cornell_diffuse_area (NEE of a small light) and
+ *    cornell_specular_area (caustics, which only BSDF sampling finds).
+ *  - --max-depth 2 is direct light only (Mitsuba's max_depth = 2: camera
+ *    ray plus one segment to the light), with or without next-event
+ *    estimation: both against tests/reference/cornell_diffuse_area_direct
+ *    (block t-tests as in 07_reference).
+ *  - Path length: with --no-rr --max-depth N a camera ray is followed by at
+ *    most N - 1 secondary rays, so rays_secondary <= pixels * spp * (N - 1);
+ *    Russian roulette ends paths early (fewer secondary rays than without).
+ *  - nan_pixels is 0 in every run.
+ * All t-tests of the program share alpha = 0.01, Sidak-corrected for
+ * N_STAT_TESTS.  Images are 128 x 128, 8 renders of 16 spp per set; under
+ * AddressSanitizer 64 x 64 and 6 renders (valid tests, less power).
+ */
+#include <stdlib.h>
+
+#include "check.h"
+#include "pathcheck.h"
+#include "stagecheck.h"
+#include "stattest.h"
+#include "testlib.h"
+
+#if PATHCHECK_SANITIZED
+#define SIZE 64
+#define BATCHES 6
+#else
+#define SIZE 128
+#define BATCHES 8
+#endif
+/* SIZE as a command-line argument. */
+#define TEXT_(x) #x
+#define TEXT(x) TEXT_(x)
+#define BLOCK 16
+
+/* Per comparison: the blocks and the whole image, 3 channels each.  Four
+ * two-sample comparisons and two against the direct-light reference. */
+#define N_BLOCKS ((SIZE / BLOCK) * (SIZE / BLOCK))
+#define N_STAT_TESTS (6.0 * 3 * (N_BLOCKS + 1))
+
+static double
+stat_level(void)
+{
+    return stattest_sidak(PATHCHECK_ALPHA, N_STAT_TESTS);
+}
+
+/* BATCHES renders at SIZE x SIZE, 16 spp, with `extra` options (NULL-
+ * terminated, at most 4). */
+static bool
+render_set(
+    const char *scene,
+    const char *const extra[],
+    uint64_t seed,
+    struct pathcheck_batches *out)
+{
+    const char *args[16] = {"-W", TEXT(SIZE), "-H", TEXT(SIZE), "--spp", "16"};
+    int n = 6;
+    for (int i = 0; extra && extra[i] && n < 15; i++) {
+        args[n++] = extra[i];
+    }
+    args[n] = NULL;
+    if (!pathcheck_render_batches(test_root_path(scene), args, BATCHES, seed, out)) {
+        return false;
+    }
+    CHECK_MSG(out->nan_pixels == 0, "%s: %.0f NaN pixels", scene, out->nan_pixels);
+    return true;
+}
+
+/* Compare the default with --no-rr and with --no-nee on one scene. */
+static void
+compare_switches(const char *scene, uint64_t seed)
+{
+    static const char *const no_rr[] = {"--no-rr", NULL};
+    static const char *const no_nee[] = {"--no-nee", NULL};
+    struct pathcheck_batches base;
+    struct pathcheck_batches other;
+    if (!render_set(scene, NULL, seed, &base)) {
+        CHECK(false);
+        return;
+    }
+    const char *const *variants[2] = {no_rr, no_nee};
+    for (int v = 0; v < 2; v++) {
+        if (!render_set(scene, variants[v], seed + 100 * (v + 1), &other)) {
+            CHECK(false);
+            continue;
+        }
+        struct pathcheck_tally blocks = pathcheck_tally_start();
+        struct pathcheck_tally whole = pathcheck_tally_start();
+        CHECK(pathcheck_block_welch(
+            base.images,
+            base.k,
+            other.images,
+            other.k,
+            BLOCK,
+            stat_level(),
+            &blocks));
+        CHECK(pathcheck_block_welch(
+            base.images,
+            base.k,
+            other.images,
+            other.k,
+            SIZE,
+            stat_level(),
+            &whole));
+        double mean_base[3];
+        double mean_other[3];
+        struct image m = {0};
+        CHECK(pathcheck_mean_image(base.images, base.k, &m));
+        metrics_mean(&m, NULL, mean_base);
+        image_free(&m);
+        CHECK(pathcheck_mean_image(other.images, other.k, &m));
+        metrics_mean(&m, NULL, mean_other);
+        image_free(&m);
+        printf(
+            "%s, default vs %s (%d x 16 spp each, %.1f s + %.1f s): image mean %.5f vs "
+            "%.5f (red)\n",
+            scene,
+            variants[v][0],
+            BATCHES,
+            base.seconds,
+            other.seconds,
+            mean_base[0],
+            mean_other[0]);
+        printf(
+            "  %zu block tests: min p %.3g, %zu rejected; image mean: min p %.3g, "
+            "%zu rejected (level %.3g)\n",
+            blocks.tests,
+            blocks.min_p,
+            blocks.rejected,
+            whole.min_p,
+            whole.rejected,
+            stat_level());
+        CHECK_MSG(
+            blocks.rejected == 0 && whole.rejected == 0,
+            "%s: %s changes the image",
+            scene,
+            variants[v][0]);
+        pathcheck_batches_free(&other);
+    }
+    pathcheck_batches_free(&base);
+}
+
+TEST(rr_and_nee_are_unbiased_diffuse)
+{
+    compare_switches("scenes/cornell_diffuse_area.scene", pathcheck_seed(7100));
+}
+
+TEST(rr_and_nee_are_unbiased_specular)
+{
+    compare_switches("scenes/cornell_specular_area.scene", pathcheck_seed(7100) + 1000);
+}
+
+TEST(max_depth_2_is_direct_light)
+{
+    static const char *const depth2[] = {"--max-depth", "2", NULL};
+    static const char *const depth2_no_nee[] = {"--max-depth", "2", "--no-nee", NULL};
+    const char *const *variants[2] = {depth2, depth2_no_nee};
+    const char *names[2] = {"--max-depth 2", "--max-depth 2 --no-nee"};
+    struct pathcheck_reference ref;
+    if (!pathcheck_reference_load("cornell_diffuse_area_direct", 256 / SIZE, &ref)) {
+        CHECK(false);
+        return;
+    }
+    uint64_t seed = pathcheck_seed(7100) + 2000;
+    for (int v = 0; v < 2; v++) {
+        struct pathcheck_batches b;
+        if (!render_set("scenes/cornell_diffuse_area.scene", variants[v], seed + 100 * v, &b)) {
+            CHECK(false);
+            continue;
+        }
+        struct pathcheck_tally blocks = pathcheck_tally_start();
+        struct pathcheck_tally whole = pathcheck_tally_start();
+        struct metrics_block_stats s = {0};
+        bool ok = pathcheck_reference_test(b.images, b.k, &ref, BLOCK, stat_level(), &blocks, NULL)
+                  && pathcheck_reference_test(b.images, b.k, &ref, SIZE, stat_level(), &whole, &s);
+        CHECK(ok);
+        if (ok) {
+            const struct metrics_block *w = &s.blocks[0];
+            printf(
+                "%s vs Mitsuba's direct light: image mean %.5f, reference %.5f (red, %+.1f%%)"
+                "\n  %zu block tests: min p %.3g, %zu rejected; image mean: %zu rejected "
+                "(level %.3g); relMSE at 16 spp %.3g\n",
+                names[v],
+                w->mean[0],
+                w->ref_mean[0],
+                100 * (w->mean[0] / w->ref_mean[0] - 1),
+                blocks.tests,
+                blocks.min_p,
+                blocks.rejected,
+                whole.rejected,
+                stat_level(),
+                pathcheck_mean_relmse(b.images, b.k, &ref.image));
+        }
+        CHECK_MSG(
+            blocks.rejected == 0 && whole.rejected == 0,
+            "%s: not the direct light (%zu of %zu blocks rejected)",
+            names[v],
+            blocks.rejected,
+            blocks.tests);
+        metrics_block_stats_free(&s);
+        pathcheck_batches_free(&b);
+    }
+    pathcheck_reference_free(&ref);
+}
+
+/* rays_secondary of one 64x64 render at 4 spp. */
+static double
+secondary_rays(const char *const extra[])
+{
+    const char *args[12] = {"-W", "64", "-H", "64", "--spp", "4"};
+    int n = 6;
+    for (int i = 0; extra[i] && n < 11; i++) {
+        args[n++] = extra[i];
+    }
+    args[n] = NULL;
+    struct image img = {0};
+    const char *stats = NULL;
+    if (!pathcheck_render(
+            test_root_path("scenes/cornell_diffuse_area.scene"),
+            args,
+            pathcheck_seed(7100),
+            &img,
+            &stats)) {
+        return NAN;
+    }
+    CHECK(stagecheck_stat(stats, "nan_pixels") == 0);
+    image_free(&img);
+    return stagecheck_stat(stats, "rays_secondary");
+}
+
+TEST(path_length_is_bounded)
+{
+    const double camera_rays = 64.0 * 64 * 4;
+    static const char *const depths[] = {"2", "3", "5"};
+    for (int i = 0; i < 3; i++) {
+        const char *const args[] = {"--no-rr", "--max-depth", depths[i], NULL};
+        double rays = secondary_rays(args);
+        double bound = camera_rays * (atoi(depths[i]) - 1);
+        printf(
+            "--no-rr --max-depth %s: %.0f secondary rays, %.3f per camera ray (at most %s - 1)"
+            "\n",
+            depths[i],
+            rays,
+            rays / camera_rays,
+            depths[i]);
+        CHECK_MSG(
+            rays <= bound,
+            "--max-depth %s: %.0f secondary rays, bound %.0f",
+            depths[i],
+            rays,
+            bound);
+    }
+    const char *const no_rr[] = {"--no-rr", NULL};
+    const char *const with_rr[] = {NULL};
+    double without = secondary_rays(no_rr);
+    double with = secondary_rays(with_rr);
+    printf(
+        "unbounded depth: %.3f secondary rays per camera ray without Russian roulette, %.3f "
+        "with\n",
+        without / camera_rays,
+        with / camera_rays);
+    CHECK_MSG(with < 0.9 * without, "Russian roulette: %.0f rays, without %.0f", with, without);
+}
+
+TEST_MAIN(
+    TEST_ENTRY(rr_and_nee_are_unbiased_diffuse),
+    TEST_ENTRY(rr_and_nee_are_unbiased_specular),
+    TEST_ENTRY(max_depth_2_is_direct_light),
+    TEST_ENTRY(path_length_is_bounded))

@@ -1,0 +1,285 @@
+/*
+ * 07_progressive.c - progressive rendering: the image is built in passes
+ * of one sample per pixel, and a render stopped by its time budget or by
+ * Ctrl-C (SIGINT) still writes a valid image of whole passes.
+ *
+ *  - --time 0.5 without --spp: exit 0, a valid image, spp (from --stats)
+ *    at least 1, no pass begun after the budget ran out (the render took
+ *    at least 0.5 s but stopped), and exactly spp camera rays per pixel:
+ *    a time budget never cuts a pass.
+ *  - SIGINT during a long render (fork and exec the binary, wait 0.5 s,
+ *    kill(pid, SIGINT), waitpid): exit status 0; the output exists and is a
+ *    valid PFM; --stats reports the complete passes, 1 <= spp < requested,
+ *    and the camera rays are those passes plus at most one partial pass.
+ *    The image holds exactly those passes: its image mean matches Mitsuba's
+ *    to 2%, and spp * relMSE is that of an uninterrupted render (within a
+ *    factor 2), which a wrong sample count would not give.
+ *  - SIGINT before the first pass is complete: nothing is written, and the
+ *    exit status is 130 (the shell's code for death by SIGINT; CONTRACT.md:
+ *    "on any failure no output file is created").
+ *  - nan_pixels is 0 in every run that writes an image.
+ */
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "metrics.h"
+#include "pathcheck.h"
+#include "stagecheck.h"
+#include "testlib.h"
+
+#define SIZE 64
+#define FACTOR (256 / SIZE)
+
+/* relMSE of img against the area-light GI reference at SIZE x SIZE, and
+ * the red channel's relative image-mean difference in *mean_diff. */
+static double
+relmse_against_reference(const struct image *img, double *mean_diff)
+{
+    struct pathcheck_reference ref;
+    if (!pathcheck_reference_load("cornell_diffuse_area_gi", FACTOR, &ref)) {
+        return NAN;
+    }
+    struct metrics m;
+    struct diag err;
+    double relmse = NAN;
+    if (metrics_compare(img, &ref.image, NULL, &m, &err)) {
+        relmse = m.n_nonfinite ? NAN : m.relmse;
+        *mean_diff = m.mean[0] / m.ref_mean[0] - 1;
+    }
+    pathcheck_reference_free(&ref);
+    return relmse;
+}
+
+/* spp * relMSE of an uninterrupted 64-spp render: the yardstick for the
+ * noise of an image of known sample count. */
+static double
+noise_constant(void)
+{
+    static double c = NAN;
+    if (isnan(c)) {
+        const char *const args[] = {"-W", "64", "-H", "64", "--spp", "64", NULL};
+        struct image img = {0};
+        const char *stats = NULL;
+        double diff;
+        if (pathcheck_render(
+                test_root_path("scenes/cornell_diffuse_area.scene"),
+                args,
+                pathcheck_seed(7200),
+                &img,
+                &stats)) {
+            c = 64 * relmse_against_reference(&img, &diff);
+            image_free(&img);
+        }
+        printf("64 spp uninterrupted: spp * relMSE = %.3g\n", c);
+    }
+    return c;
+}
+
+TEST(time_budget_stops_after_whole_passes)
+{
+    const char *const args[] = {"-W", "64", "-H", "64", "--time", "0.5", NULL};
+    struct image img = {0};
+    const char *stats = NULL;
+    if (!pathcheck_render(
+            test_root_path("scenes/cornell_diffuse_area.scene"),
+            args,
+            pathcheck_seed(7200),
+            &img,
+            &stats)) {
+        CHECK(false);
+        return;
+    }
+    double spp = stagecheck_stat(stats, "spp");
+    double seconds = stagecheck_stat(stats, "seconds_render");
+    double rays = stagecheck_stat(stats, "rays_camera");
+    double diff = NAN;
+    double relmse = relmse_against_reference(&img, &diff);
+    printf(
+        "--time 0.5: %.0f passes in %.3f s, %.0f camera rays (%.0f per pixel), relMSE %.3g "
+        "(spp * relMSE %.3g), image mean %+.2f%% off\n",
+        spp,
+        seconds,
+        rays,
+        rays / (SIZE * SIZE),
+        relmse,
+        spp * relmse,
+        100 * diff);
+    CHECK_MSG(spp >= 1, "spp %.0f", spp);
+    CHECK_MSG(seconds >= 0.5 || spp == 1, "stopped after %.3f s", seconds);
+    /* The last pass begins before 0.5 s: the time of one pass is
+     * seconds / spp; 2 s more is slack for a loaded machine. */
+    CHECK_MSG(seconds < 0.5 + seconds / spp + 2, "ran %.3f s for a 0.5 s budget", seconds);
+    CHECK_MSG(rays == spp * SIZE * SIZE, "%.0f camera rays for %.0f passes", rays, spp);
+    CHECK_MSG(fabs(diff) < 0.02, "image mean %+.2f%% off", 100 * diff);
+    CHECK(spp * relmse < 2 * noise_constant());
+    CHECK(metrics_count_nonfinite(&img) == 0);
+    CHECK(stagecheck_stat(stats, "nan_pixels") == 0);
+    image_free(&img);
+}
+
+/* Run argv, send SIGINT after `delay` seconds, and return its exit status
+ * (128 + signal if it died of one; -1 if it could not run).  *running
+ * tells whether it was still running when the signal was sent. */
+static int
+run_and_interrupt(const char *const argv[], double delay, bool *running)
+{
+    const char *log = test_tmp_path("interrupted.log");
+    fflush(stdout);
+    pid_t pid = fork();
+    if (pid < 0) {
+        return -1;
+    }
+    if (pid == 0) {
+        int in = open("/dev/null", O_RDONLY);
+        int out = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (in < 0 || out < 0) {
+            _exit(127);
+        }
+        dup2(in, 0);
+        dup2(out, 1);
+        dup2(out, 2);
+        execv(argv[0], (char *const *)argv);
+        _exit(127);
+    }
+    struct timespec wait = {(time_t)delay, (long)((delay - (double)(time_t)delay) * 1e9)};
+    while (nanosleep(&wait, &wait) != 0 && errno == EINTR) {
+    }
+    int status = 0;
+    *running = waitpid(pid, &status, WNOHANG) == 0;
+    if (*running) {
+        kill(pid, SIGINT);
+        while (waitpid(pid, &status, 0) < 0) {
+            if (errno != EINTR) {
+                return -1;
+            }
+        }
+    }
+    char *text = test_read_file(log, NULL);
+    if (text && text[0]) {
+        printf("its output: %s", text);
+    }
+    free(text);
+    if (WIFEXITED(status)) {
+        return WEXITSTATUS(status);
+    }
+    return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+}
+
+TEST(interrupt_keeps_the_complete_passes)
+{
+    const char *render = test_render_binary();
+    const char *out = test_tmp_path("interrupted.pfm");
+    const char *stats = test_tmp_path("interrupted.json");
+    if (!render) {
+        CHECK_MSG(false, "RENDER is not set");
+        return;
+    }
+    remove(out);
+    const char *const argv[] = {
+        render,
+        "-q",
+        "-W",
+        "64",
+        "-H",
+        "64",
+        "--spp",
+        "1000000",
+        "-o",
+        out,
+        "--stats",
+        stats,
+        test_root_path("scenes/cornell_diffuse_area.scene"),
+        NULL};
+    bool running = false;
+    int status = run_and_interrupt(argv, 0.5, &running);
+    CHECK_MSG(running, "the render finished before the signal");
+    CHECK_MSG(status == 0, "exit status %d after SIGINT", status);
+    struct image img = {0};
+    struct diag err;
+    if (!test_file_exists(out) || !image_read_pfm(out, &img, &err)) {
+        CHECK_MSG(false, "no valid image at %s", out);
+        return;
+    }
+    double spp = stagecheck_stat(stats, "spp");
+    double rays = stagecheck_stat(stats, "rays_camera");
+    double pixels = SIZE * SIZE;
+    double diff = NAN;
+    double relmse = relmse_against_reference(&img, &diff);
+    printf(
+        "SIGINT after 0.5 s: exit %d, %.0f samples per pixel, %.0f camera rays (%.2f per pixel), "
+        "relMSE %.3g (spp * relMSE %.3g), image mean %+.2f%% off\n",
+        status,
+        spp,
+        rays,
+        rays / pixels,
+        relmse,
+        spp * relmse,
+        100 * diff);
+    CHECK_MSG(spp >= 1 && spp < 1000000, "spp %.0f", spp);
+    CHECK_MSG(img.width == SIZE && img.height == SIZE, "%dx%d", img.width, img.height);
+    /* A pass holds up to 16 samples per pixel (the largest divisor of
+     * --spp up to 16); the pass cut short adds less than one pass of rays. */
+    CHECK_MSG(
+        rays >= spp * pixels && rays < (spp + 16) * pixels,
+        "%.0f camera rays for %.0f samples per pixel",
+        rays,
+        spp);
+    CHECK_MSG(fabs(diff) < 0.02, "image mean %+.2f%% off", 100 * diff);
+    double c = noise_constant();
+    CHECK_MSG(
+        spp * relmse > 0.5 * c && spp * relmse < 2 * c,
+        "spp * relMSE %.3g, uninterrupted %.3g: the image does not hold %.0f samples per pixel",
+        spp * relmse,
+        c,
+        spp);
+    CHECK(metrics_count_nonfinite(&img) == 0);
+    CHECK(stagecheck_stat(stats, "nan_pixels") == 0);
+    image_free(&img);
+}
+
+TEST(interrupt_before_the_first_pass_writes_nothing)
+{
+    const char *render = test_render_binary();
+    const char *out = test_tmp_path("too-early.pfm");
+    if (!render) {
+        CHECK_MSG(false, "RENDER is not set");
+        return;
+    }
+    remove(out);
+    /* One pass of 512x512 pixels with 64 shadow rays each takes seconds. */
+    const char *const argv[] = {
+        render,
+        "-q",
+        "-W",
+        "512",
+        "-H",
+        "512",
+        "--spp",
+        "4",
+        "--shadow-samples",
+        "64",
+        "-o",
+        out,
+        test_root_path("scenes/cornell_diffuse_area.scene"),
+        NULL};
+    bool running = false;
+    int status = run_and_interrupt(argv, 0.3, &running);
+    printf(
+        "SIGINT after 0.3 s, within the first pass: exit %d, output %s\n",
+        status,
+        test_file_exists(out) ? "written" : "not written");
+    CHECK_MSG(running, "the render finished before the signal");
+    CHECK_MSG(status == 130, "exit status %d", status);
+    CHECK(!test_file_exists(out));
+}
+
+TEST_MAIN(
+    TEST_ENTRY(time_budget_stops_after_whole_passes),
+    TEST_ENTRY(interrupt_keeps_the_complete_passes),
+    TEST_ENTRY(interrupt_before_the_first_pass_writes_nothing))
