@@ -14,7 +14,7 @@
 struct atomic_file {
     FILE *f;
     char tmp_path[1024]; /* the temporary file, beside the target */
-    const char *path;    /* the target */
+    const char *path; /* the target */
 };
 
 /* Create the temporary file beside path and open it for writing. */

@@ -42,7 +42,11 @@ static const struct shared_option shared_options[] = {
     {ID_WIDTH, 'W', "width", "N", "override the scene's image width (height scales unless -H)"},
     {ID_HEIGHT, 'H', "height", "N", "override the scene's image height"},
     {ID_SPP, 's', "spp", "N", "samples per pixel, for stages that sample"},
-    {ID_THREADS, 't', "threads", "N", "threads (default: all cores); the image does not depend on N"},
+    {ID_THREADS,
+     't',
+     "threads",
+     "N",
+     "threads (default: all cores); the image does not depend on N"},
     {ID_SEED, 0, "seed", "N", "random seed (default 1); same seed and options, same image"},
     {ID_STATS, 0, "stats", "FILE", "write the run's statistics as one JSON object"},
     {ID_QUIET, 'q', "quiet", NULL, "no progress bar"},
@@ -67,13 +71,20 @@ parse_long(const char *text, long long min, long long max, long long *out)
 }
 
 static bool
-parse_int_in(const char *name, const char *text, double min, double max, int *out,
-    struct diag *err)
+parse_int_in(const char *name, const char *text, double min, double max, int *out, struct diag *err)
 {
     long long v;
     if (!parse_long(text, (long long)min, (long long)max, &v)) {
-        diag_set(err, NULL, 0, 0, "--%s expects a whole number in [%.0f, %.0f], got '%s'", name,
-            min, max, text);
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "--%s expects a whole number in [%.0f, %.0f], got '%s'",
+            name,
+            min,
+            max,
+            text);
         return false;
     }
     *out = (int)v;
@@ -81,14 +92,27 @@ parse_int_in(const char *name, const char *text, double min, double max, int *ou
 }
 
 static bool
-parse_real_in(const char *name, const char *text, double min, double max, real *out,
+parse_real_in(
+    const char *name,
+    const char *text,
+    double min,
+    double max,
+    real *out,
     struct diag *err)
 {
     char *end;
     errno = 0;
     double v = strtod(text, &end);
     if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v) || v < min || v > max) {
-        diag_set(err, NULL, 0, 0, "--%s expects a number in [%g, %g], got '%s'", name, min, max,
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "--%s expects a number in [%g, %g], got '%s'",
+            name,
+            min,
+            max,
             text);
         return false;
     }
@@ -104,14 +128,21 @@ parse_pair(const struct option_spec *spec, const char *text, struct diag *err)
     char first[64];
     size_t len = comma ? (size_t)(comma - text) : 0;
     if (!comma || len >= sizeof first) {
-        diag_set(err, NULL, 0, 0, "--%s expects %s (two whole numbers), got '%s'", spec->name,
-            spec->arg, text);
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "--%s expects %s (two whole numbers), got '%s'",
+            spec->name,
+            spec->arg,
+            text);
         return false;
     }
     memcpy(first, text, len);
     first[len] = '\0';
     return parse_int_in(spec->name, first, spec->min, spec->max, &pair[0], err)
-        && parse_int_in(spec->name, comma + 1, spec->min, spec->max, &pair[1], err);
+           && parse_int_in(spec->name, comma + 1, spec->min, spec->max, &pair[1], err);
 }
 
 static bool
@@ -153,7 +184,11 @@ apply_extra(const struct option_spec *spec, const char *value, struct diag *err)
 }
 
 static bool
-apply_shared(enum shared_id id, const char *name, const char *value, struct options *opt,
+apply_shared(
+    enum shared_id id,
+    const char *name,
+    const char *value,
+    struct options *opt,
     struct diag *err)
 {
     long long seed;
@@ -199,8 +234,14 @@ print_help(FILE *out, const char *stage, const char *summary, const struct optio
     for (int i = 0; i < N_SHARED; i++) {
         const struct shared_option *o = &shared_options[i];
         char left[64];
-        snprintf(left, sizeof left, "%c%c%s--%s %s", o->short_name ? '-' : ' ',
-            o->short_name ? o->short_name : ' ', o->short_name ? ", " : "  ", o->name,
+        snprintf(
+            left,
+            sizeof left,
+            "%c%c%s--%s %s",
+            o->short_name ? '-' : ' ',
+            o->short_name ? o->short_name : ' ',
+            o->short_name ? ", " : "  ",
+            o->name,
             o->arg ? o->arg : "");
         fprintf(out, "  %-26s %s\n", left, o->help);
     }
@@ -216,8 +257,12 @@ print_help(FILE *out, const char *stage, const char *summary, const struct optio
 
 /* Find the option an argument names; sets *shared or *extra_spec. */
 static bool
-find_option(const char *arg, const struct option_spec *extra, size_t name_len,
-    const struct shared_option **shared, const struct option_spec **extra_spec)
+find_option(
+    const char *arg,
+    const struct option_spec *extra,
+    size_t name_len,
+    const struct shared_option **shared,
+    const struct option_spec **extra_spec)
 {
     bool is_long = arg[1] == '-';
     const char *name = arg + (is_long ? 2 : 1);
@@ -241,8 +286,14 @@ find_option(const char *arg, const struct option_spec *extra, size_t name_len,
 
 /* Handle argv[*i], an option; advances *i past its value. */
 static enum cli_result
-parse_option(int argc, char **argv, int *i, struct options *opt, const struct option_spec *extra,
-    struct diag *err, enum shared_id *seen)
+parse_option(
+    int argc,
+    char **argv,
+    int *i,
+    struct options *opt,
+    const struct option_spec *extra,
+    struct diag *err,
+    enum shared_id *seen)
 {
     const char *arg = argv[*i];
     const char *eq = arg[1] == '-' ? strchr(arg, '=') : NULL;
@@ -253,7 +304,8 @@ parse_option(int argc, char **argv, int *i, struct options *opt, const struct op
         diag_set(err, NULL, 0, 0, "unknown option '%s' (see --help)", arg);
         return CLI_ERROR;
     }
-    bool takes_value = shared ? shared->arg != NULL : spec->kind != OPT_FLAG && spec->kind != OPT_UNSET;
+    bool takes_value =
+        shared ? shared->arg != NULL : spec->kind != OPT_FLAG && spec->kind != OPT_UNSET;
     const char *value = eq ? eq + 1 : NULL;
     if (takes_value && !value) {
         if (*i + 1 >= argc) {
@@ -273,7 +325,12 @@ parse_option(int argc, char **argv, int *i, struct options *opt, const struct op
 }
 
 enum cli_result
-cli_parse(int argc, char **argv, struct options *opt, const struct cli_stage *stage, FILE *out,
+cli_parse(
+    int argc,
+    char **argv,
+    struct options *opt,
+    const struct cli_stage *stage,
+    FILE *out,
     struct diag *err)
 {
     *opt = (struct options){.seed = 1};
@@ -281,8 +338,14 @@ cli_parse(int argc, char **argv, struct options *opt, const struct cli_stage *st
         const char *arg = argv[i];
         if (arg[0] != '-' || arg[1] == '\0') {
             if (opt->scene_path) {
-                diag_set(err, NULL, 0, 0, "more than one scene given: '%s' and '%s'",
-                    opt->scene_path, arg);
+                diag_set(
+                    err,
+                    NULL,
+                    0,
+                    0,
+                    "more than one scene given: '%s' and '%s'",
+                    opt->scene_path,
+                    arg);
                 return CLI_ERROR;
             }
             opt->scene_path = arg;
@@ -297,8 +360,12 @@ cli_parse(int argc, char **argv, struct options *opt, const struct cli_stage *st
             return CLI_EXIT;
         }
         if (seen == ID_VERSION) {
-            fprintf(out, "render (%s) stagelight %s, %s precision\n", stage->name,
-                STAGELIGHT_VERSION, REAL_NAME);
+            fprintf(
+                out,
+                "render (%s) stagelight %s, %s precision\n",
+                stage->name,
+                STAGELIGHT_VERSION,
+                REAL_NAME);
             return CLI_EXIT;
         }
     }

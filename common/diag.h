@@ -20,7 +20,7 @@
 
 struct diag {
     char file[512]; /* empty when the problem has no file */
-    int line, col;  /* 1-based; 0 when unknown */
+    int line, col; /* 1-based; 0 when unknown */
     char msg[512];
 };
 

@@ -77,9 +77,18 @@ draw_progress(struct pass_state *ps, bool final)
     fraction = fraction > 1 ? 1 : fraction;
     int bar = (int)(fraction * 30);
     double eta = fraction > 0 ? elapsed / fraction - elapsed : 0;
-    fprintf(stderr, "\r[%.*s%.*s] %3d%%  %.1f s  ETA %.1f s  pass %d/%d ", bar,
-        "##############################", 30 - bar, "                              ",
-        (int)(fraction * 100), elapsed, eta, ps->pass + (final ? 0 : 1), job->passes);
+    fprintf(
+        stderr,
+        "\r[%.*s%.*s] %3d%%  %.1f s  ETA %.1f s  pass %d/%d ",
+        bar,
+        "##############################",
+        30 - bar,
+        "                              ",
+        (int)(fraction * 100),
+        elapsed,
+        eta,
+        ps->pass + (final ? 0 : 1),
+        job->passes);
     if (final) {
         fprintf(stderr, "\n");
     }
@@ -167,7 +176,11 @@ accumulate_pass(const vec3 *values, size_t n, vec3 *sum, unsigned char *bad)
 }
 
 static void
-write_mean(const vec3 *sum, const unsigned char *bad, int passes, struct image *out,
+write_mean(
+    const vec3 *sum,
+    const unsigned char *bad,
+    int passes,
+    struct image *out,
     struct render_result *result)
 {
     size_t n = (size_t)out->width * (size_t)out->height;
@@ -182,7 +195,10 @@ write_mean(const vec3 *sum, const unsigned char *bad, int passes, struct image *
 }
 
 bool
-render_image(const struct render_job *job, struct image *out, struct render_result *result,
+render_image(
+    const struct render_job *job,
+    struct image *out,
+    struct render_result *result,
     struct diag *err)
 {
     *result = (struct render_result){0};

@@ -27,8 +27,8 @@ typedef vec3 (*pixel_fn)(const void *ctx, int px, int py, struct rng *rng, struc
 
 struct render_job {
     int width, height;
-    int threads;       /* >= 1 */
-    int passes;        /* passes to run (>= 1); the image is their mean */
+    int threads; /* >= 1 */
+    int passes; /* passes to run (>= 1); the image is their mean */
     double time_limit; /* seconds; stop starting passes after this (0: none) */
     uint64_t seed;
     bool progress; /* draw a progress bar on stderr */
@@ -37,8 +37,8 @@ struct render_job {
 };
 
 struct render_result {
-    int passes_done;     /* complete passes in the image */
-    bool interrupted;    /* stopped early by render_request_stop() */
+    int passes_done; /* complete passes in the image */
+    bool interrupted; /* stopped early by render_request_stop() */
     uint64_t nan_pixels; /* pixels with a NaN or Inf estimate in any pass */
     struct stats counts; /* summed over threads */
     double seconds;
@@ -46,7 +46,10 @@ struct render_result {
 
 /* Render into out (allocated here).  Returns false only when memory or
  * threads could not be had (err says which). */
-bool render_image(const struct render_job *job, struct image *out, struct render_result *result,
+bool render_image(
+    const struct render_job *job,
+    struct image *out,
+    struct render_result *result,
     struct diag *err);
 
 /* Ask a running render_image to stop after the tiles in flight; safe to

@@ -1,7 +1,6 @@
 /* feature_table.c - the table of scene features and the stages that model them. */
 #include "feature_table.h"
 
-
 /* ORDER FEATURE */
 static const struct feature_info table[FEAT_COUNT] = {
     [FEAT_POINT_LIGHT] = {.name = "point light", .first_stage = 1, .last_stage = STAGE_COUNT},
@@ -103,7 +102,11 @@ features_of_stage(int number)
 }
 
 int
-features_unmodelled(const struct scene *s, unsigned modelled, const char *stage, struct diag *notes,
+features_unmodelled(
+    const struct scene *s,
+    unsigned modelled,
+    const char *stage,
+    struct diag *notes,
     int max)
 {
     int n = 0;
@@ -115,11 +118,26 @@ features_unmodelled(const struct scene *s, unsigned modelled, const char *stage,
         const struct feature_info *info = &table[f];
         struct src_loc at = s->feature_loc[f];
         if (here < info->first_stage) {
-            diag_set(&notes[n++], s->path, at.line, at.col, "%s: not modelled by %s (%s adds it); %s",
-                info->name, stage, stage_name(info->first_stage), info->before);
+            diag_set(
+                &notes[n++],
+                s->path,
+                at.line,
+                at.col,
+                "%s: not modelled by %s (%s adds it); %s",
+                info->name,
+                stage,
+                stage_name(info->first_stage),
+                info->before);
         } else {
-            diag_set(&notes[n++], s->path, at.line, at.col, "%s: not modelled by %s; %s", info->name,
-                stage, info->after ? info->after : "ignored");
+            diag_set(
+                &notes[n++],
+                s->path,
+                at.line,
+                at.col,
+                "%s: not modelled by %s; %s",
+                info->name,
+                stage,
+                info->after ? info->after : "ignored");
         }
     }
     return n;

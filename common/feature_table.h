@@ -17,11 +17,11 @@
 #define STAGE_COUNT 7
 
 struct feature_info {
-    const char *name;   /* "area light" */
-    int first_stage;    /* first stage that models it */
-    int last_stage;     /* last stage that models it */
+    const char *name; /* "area light" */
+    int first_stage; /* first stage that models it */
+    int last_stage; /* last stage that models it */
     const char *before; /* what stages before first_stage do instead */
-    const char *after;  /* what stages after last_stage do instead */
+    const char *after; /* what stages after last_stage do instead */
 };
 
 const struct feature_info *feature_info(enum feature f);
@@ -37,7 +37,11 @@ unsigned features_of_stage(int number);
 
 /* One diagnostic per feature the scene uses and `modelled` lacks, located at
  * the statement that first uses it.  Fills at most max; returns the count. */
-int features_unmodelled(const struct scene *s, unsigned modelled, const char *stage, struct diag *notes,
+int features_unmodelled(
+    const struct scene *s,
+    unsigned modelled,
+    const char *stage,
+    struct diag *notes,
     int max);
 
 #endif /* FEATURE_TABLE_H */

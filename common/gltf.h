@@ -27,11 +27,11 @@
 
 struct gltf_mesh {
     size_t n_vertices;
-    double *positions;  /* 3 * n_vertices, world space */
-    double *normals;    /* 3 * n_vertices, unit; NULL when no primitive had normals;
-                           (0,0,0) for the vertices of primitives without them */
+    double *positions; /* 3 * n_vertices, world space */
+    double *normals; /* 3 * n_vertices, unit; NULL when no primitive had normals;
+                        (0,0,0) for the vertices of primitives without them */
     size_t n_triangles;
-    unsigned *indices;  /* 3 * n_triangles, each < n_vertices */
+    unsigned *indices; /* 3 * n_triangles, each < n_vertices */
 };
 
 /* True when built with tinygltf. */

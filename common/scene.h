@@ -32,20 +32,20 @@ struct src_loc {
 /* ORDER MAT_KIND: append only (docs and name tables follow this order). */
 enum material_kind {
     MAT_DIFFUSE, /* Lambertian: albedo */
-    MAT_MIRROR,  /* perfect specular reflection: reflectance per channel */
-    MAT_GLASS,   /* smooth dielectric: ior inside, 1 outside; Fresnel */
-    MAT_BLEND,   /* classic Whitted surface: albedo (diffuse) + reflectance (mirror) */
+    MAT_MIRROR, /* perfect specular reflection: reflectance per channel */
+    MAT_GLASS, /* smooth dielectric: ior inside, 1 outside; Fresnel */
+    MAT_BLEND, /* classic Whitted surface: albedo (diffuse) + reflectance (mirror) */
     MAT_CHECKER, /* diffuse with a solid 3D checkerboard of albedo / albedo2 */
 };
 
 struct material {
     char name[SCENE_MAX_NAME + 1];
     enum material_kind kind;
-    vec3 albedo;       /* DIFFUSE, BLEND, CHECKER (the first colour) */
-    vec3 albedo2;      /* CHECKER: the second colour */
+    vec3 albedo; /* DIFFUSE, BLEND, CHECKER (the first colour) */
+    vec3 albedo2; /* CHECKER: the second colour */
     real checker_size; /* CHECKER: edge of one cube of the pattern (scene units) */
-    vec3 reflectance;  /* MIRROR, BLEND */
-    real ior;          /* GLASS: index of refraction inside; outside is 1 */
+    vec3 reflectance; /* MIRROR, BLEND */
+    real ior; /* GLASS: index of refraction inside; outside is 1 */
     struct src_loc loc;
 };
 
@@ -98,20 +98,20 @@ enum feature {
     FEAT_GLASS,
     FEAT_BLEND,
     FEAT_CHECKER,
-    FEAT_AMBIENT,     /* a non-zero ambient term */
+    FEAT_AMBIENT, /* a non-zero ambient term */
     FEAT_ENVIRONMENT, /* a non-black background, which lights the scene in 07 */
-    FEAT_MESH,        /* a triangle mesh loaded from a glTF file */
+    FEAT_MESH, /* a triangle mesh loaded from a glTF file */
     FEAT_COUNT,
 };
 
 #define FEATURE_BIT(f) (1u << (f))
 
 struct scene {
-    char path[512];     /* the scene file, as given */
-    int width, height;  /* image size in pixels */
+    char path[512]; /* the scene file, as given */
+    int width, height; /* image size in pixels */
     struct camera_desc camera;
-    vec3 background;    /* radiance of rays that leave the scene */
-    vec3 ambient;       /* ambient radiance term (default 0) */
+    vec3 background; /* radiance of rays that leave the scene */
+    vec3 ambient; /* ambient radiance term (default 0) */
 
     struct material *materials;
     int n_materials;
@@ -119,8 +119,8 @@ struct scene {
     int n_spheres;
     struct quad *quads;
     int n_quads;
-    vec3 *positions;    /* shared vertex arrays for triangles */
-    vec3 *normals;      /* unit vertex normals; (0,0,0) where a vertex has none */
+    vec3 *positions; /* shared vertex arrays for triangles */
+    vec3 *normals; /* unit vertex normals; (0,0,0) where a vertex has none */
     int n_vertices;
     struct triangle *triangles;
     int n_triangles;
@@ -129,7 +129,7 @@ struct scene {
     struct area_light *area_lights;
     int n_area_lights;
 
-    unsigned features;                     /* FEATURE_BIT(f) for each feature used */
+    unsigned features; /* FEATURE_BIT(f) for each feature used */
     struct src_loc feature_loc[FEAT_COUNT]; /* statement where each is first used */
 };
 
@@ -139,7 +139,11 @@ bool scene_load(const char *path, struct scene *out, struct diag *err);
 
 /* Same, from text in memory; `name` is the file name used in diagnostics and
  * the directory mesh files are found relative to. */
-bool scene_load_string(const char *text, size_t len, const char *name, struct scene *out,
+bool scene_load_string(
+    const char *text,
+    size_t len,
+    const char *name,
+    struct scene *out,
     struct diag *err);
 
 /* Free everything; accepts a zero-initialised or half-built scene. */

@@ -43,15 +43,35 @@ report_print(FILE *f, const struct report *r)
 {
     const struct stats *c = &r->counts;
     double rays = (double)total_rays(c);
-    fprintf(f, "%s: %s, %dx%d, %d spp, %d thread%s\n", r->stage, r->scene, r->width, r->height,
-        r->spp, r->threads, r->threads == 1 ? "" : "s");
-    fprintf(f, "  time     %.3f s total: load %.3f s, build %.3f s, render %.3f s\n",
-        r->seconds_total, r->seconds_load, r->seconds_build, r->seconds_render);
-    fprintf(f, "  rays     %.4g camera, %.4g shadow, %.4g secondary: %.3f Mrays/s\n",
-        (double)c->rays_camera, (double)c->rays_shadow, (double)c->rays_secondary,
+    fprintf(
+        f,
+        "%s: %s, %dx%d, %d spp, %d thread%s\n",
+        r->stage,
+        r->scene,
+        r->width,
+        r->height,
+        r->spp,
+        r->threads,
+        r->threads == 1 ? "" : "s");
+    fprintf(
+        f,
+        "  time     %.3f s total: load %.3f s, build %.3f s, render %.3f s\n",
+        r->seconds_total,
+        r->seconds_load,
+        r->seconds_build,
+        r->seconds_render);
+    fprintf(
+        f,
+        "  rays     %.4g camera, %.4g shadow, %.4g secondary: %.3f Mrays/s\n",
+        (double)c->rays_camera,
+        (double)c->rays_shadow,
+        (double)c->rays_secondary,
         per_second(rays, r->seconds_render) * 1e-6);
     if (rays > 0) {
-        fprintf(f, "  per ray  %.2f primitive tests, %.2f node visits\n", (double)c->prim_tests / rays,
+        fprintf(
+            f,
+            "  per ray  %.2f primitive tests, %.2f node visits\n",
+            (double)c->prim_tests / rays,
             (double)c->node_visits / rays);
     }
     for (int i = 0; i < STATS_MAX_EXTRA; i++) {
@@ -63,7 +83,9 @@ report_print(FILE *f, const struct report *r)
         fprintf(f, "  %-8s %.6g\n", r->values[i].key, r->values[i].value);
     }
     if (r->nan_pixels > 0) {
-        fprintf(f, "  WARNING  %llu pixels were NaN or Inf (set to 0 in the image)\n",
+        fprintf(
+            f,
+            "  WARNING  %llu pixels were NaN or Inf (set to 0 in the image)\n",
             (unsigned long long)r->nan_pixels);
     }
 }

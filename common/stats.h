@@ -19,11 +19,11 @@
 #define REPORT_MAX_VALUES 24
 
 struct stats {
-    uint64_t rays_camera;    /* primary rays */
-    uint64_t rays_shadow;    /* visibility (any-hit) rays */
+    uint64_t rays_camera; /* primary rays */
+    uint64_t rays_shadow; /* visibility (any-hit) rays */
     uint64_t rays_secondary; /* reflected, refracted, path-continuation rays */
-    uint64_t prim_tests;     /* ray-primitive intersection tests */
-    uint64_t node_visits;    /* BVH nodes visited (0 before stage 05) */
+    uint64_t prim_tests; /* ray-primitive intersection tests */
+    uint64_t node_visits; /* BVH nodes visited (0 before stage 05) */
     uint64_t extra[STATS_MAX_EXTRA];
 };
 
@@ -54,7 +54,7 @@ struct report {
     double seconds_total, seconds_load, seconds_build, seconds_render;
     struct stats counts;
     const char *extra_names[STATS_MAX_EXTRA]; /* names of the stage's counters; NULL: unused */
-    uint64_t nan_pixels;                      /* pixels that came out NaN or Inf before the guard */
+    uint64_t nan_pixels; /* pixels that came out NaN or Inf before the guard */
     uint64_t peak_rss_bytes;
     struct report_value values[REPORT_MAX_VALUES];
     int n_values;

@@ -21,54 +21,54 @@
 
 struct check_state {
     int failed_checks; /* in the current test */
-    int skipped;       /* the current test called SKIP */
+    int skipped; /* the current test called SKIP */
 };
 
 static struct check_state check_current;
 
-#define CHECK(cond)                                                                            \
-    do {                                                                                       \
-        if (!(cond)) {                                                                         \
-            printf("%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond);                    \
-            check_current.failed_checks++;                                                     \
-        }                                                                                      \
+#define CHECK(cond) \
+    do { \
+        if (!(cond)) { \
+            printf("%s:%d: check failed: %s\n", __FILE__, __LINE__, #cond); \
+            check_current.failed_checks++; \
+        } \
     } while (0)
 
 /* CHECK with a printf-style explanation printed on failure. */
-#define CHECK_MSG(cond, ...)                                                                   \
-    do {                                                                                       \
-        if (!(cond)) {                                                                         \
-            printf("%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond);                    \
-            printf(__VA_ARGS__);                                                               \
-            printf("\n");                                                                      \
-            check_current.failed_checks++;                                                     \
-        }                                                                                      \
+#define CHECK_MSG(cond, ...) \
+    do { \
+        if (!(cond)) { \
+            printf("%s:%d: check failed: %s: ", __FILE__, __LINE__, #cond); \
+            printf(__VA_ARGS__); \
+            printf("\n"); \
+            check_current.failed_checks++; \
+        } \
     } while (0)
 
 /* |a - b| <= tol, with both values printed on failure; NaN always fails. */
-#define CHECK_NEAR(a, b, tol)                                                                  \
-    do {                                                                                       \
-        double check_a_ = (double)(a);                                                         \
-        double check_b_ = (double)(b);                                                         \
-        if (!(fabs(check_a_ - check_b_) <= (double)(tol))) {                                   \
-            printf(                                                                            \
-                "%s:%d: check failed: %s = %.17g, %s = %.17g, tolerance %g\n",                 \
-                __FILE__,                                                                      \
-                __LINE__,                                                                      \
-                #a,                                                                            \
-                check_a_,                                                                      \
-                #b,                                                                            \
-                check_b_,                                                                      \
-                (double)(tol));                                                                \
-            check_current.failed_checks++;                                                     \
-        }                                                                                      \
+#define CHECK_NEAR(a, b, tol) \
+    do { \
+        double check_a_ = (double)(a); \
+        double check_b_ = (double)(b); \
+        if (!(fabs(check_a_ - check_b_) <= (double)(tol))) { \
+            printf( \
+                "%s:%d: check failed: %s = %.17g, %s = %.17g, tolerance %g\n", \
+                __FILE__, \
+                __LINE__, \
+                #a, \
+                check_a_, \
+                #b, \
+                check_b_, \
+                (double)(tol)); \
+            check_current.failed_checks++; \
+        } \
     } while (0)
 
-#define SKIP(why)                                                                              \
-    do {                                                                                       \
-        printf("%s:%d: skipped: %s\n", __FILE__, __LINE__, why);                               \
-        check_current.skipped = 1;                                                             \
-        return;                                                                                \
+#define SKIP(why) \
+    do { \
+        printf("%s:%d: skipped: %s\n", __FILE__, __LINE__, why); \
+        check_current.skipped = 1; \
+        return; \
     } while (0)
 
 #define TEST(name) static void test_##name(void)
@@ -78,14 +78,17 @@ struct check_test {
     void (*fn)(void);
 };
 
-#define TEST_ENTRY(name) {#name, test_##name}
+#define TEST_ENTRY(name) \
+    { \
+#name, test_##name \
+    }
 
 /* Usage: TEST_MAIN(TEST_ENTRY(a), TEST_ENTRY(b), ...) */
-#define TEST_MAIN(...)                                                                         \
-    int main(int argc, char **argv)                                                            \
-    {                                                                                          \
-        static const struct check_test tests[] = {__VA_ARGS__};                                \
-        return check_run(tests, sizeof tests / sizeof tests[0], argc, argv);                   \
+#define TEST_MAIN(...) \
+    int main(int argc, char **argv) \
+    { \
+        static const struct check_test tests[] = {__VA_ARGS__}; \
+        return check_run(tests, sizeof tests / sizeof tests[0], argc, argv); \
     }
 
 static int

@@ -13,7 +13,7 @@
 #include "vec3.h"
 
 /* The scene features this stage models (see feature_table.h). */
-#define RENDER_FEATURES                                                                        \
+#define RENDER_FEATURES \
     (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_AMBIENT) | FEATURE_BIT(FEAT_MESH))
 
 struct renderer {

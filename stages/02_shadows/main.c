@@ -32,13 +32,23 @@ check_output(const char *path, struct diag *err)
 {
     enum image_format format = image_format_from_path(path);
     if (format == IMAGE_FORMAT_UNKNOWN) {
-        diag_set(err, NULL, 0, 0, "cannot tell the format of '%s': use .png, .ppm, .pfm or .exr",
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "cannot tell the format of '%s': use .png, .ppm, .pfm or .exr",
             path);
         return false;
     }
     if (format == IMAGE_FORMAT_EXR && !image_exr_available()) {
-        diag_set(err, NULL, 0, 0,
-            "'%s': built without OpenEXR; install libopenexr-dev and rebuild to write .exr", path);
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "'%s': built without OpenEXR; install libopenexr-dev and rebuild to write .exr",
+            path);
         return false;
     }
     return true;
@@ -77,7 +87,10 @@ image_size(const struct scene *scene, const struct options *opt, int *width, int
 }
 
 static void
-fill_report(struct report *rep, const struct options *opt, const struct render_job *job,
+fill_report(
+    struct report *rep,
+    const struct options *opt,
+    const struct render_job *job,
     const struct render_result *result)
 {
     rep->stage = STAGE_NAME;
@@ -94,8 +107,12 @@ fill_report(struct report *rep, const struct options *opt, const struct render_j
 
 /* Write the image and the statistics; returns the exit status. */
 static int
-write_outputs(const struct image *image, const char *output, const struct options *opt,
-    struct report *rep, double start)
+write_outputs(
+    const struct image *image,
+    const char *output,
+    const struct options *opt,
+    struct report *rep,
+    double start)
 {
     struct diag err;
     if (!image_write(image, output, &err)) {
@@ -115,8 +132,12 @@ write_outputs(const struct image *image, const char *output, const struct option
 }
 
 static int
-render_and_write(struct renderer *renderer, const struct options *opt, const char *output,
-    struct report *rep, double start)
+render_and_write(
+    struct renderer *renderer,
+    const struct options *opt,
+    const char *output,
+    struct report *rep,
+    double start)
 {
     const struct scene *scene = renderer->scene;
     struct render_job job = {
@@ -174,8 +195,11 @@ main(int argc, char **argv)
         return EXIT_USAGE;
     }
     if (opt.spp > 1) {
-        fprintf(stderr, "warning: --spp ignored: %s traces one ray through each pixel centre "
-                        "(06_supersample adds samples per pixel)\n", STAGE_NAME);
+        fprintf(
+            stderr,
+            "warning: --spp ignored: %s traces one ray through each pixel centre "
+            "(06_supersample adds samples per pixel)\n",
+            STAGE_NAME);
     }
     struct scene scene = {0};
     if (!scene_load(opt.scene_path, &scene, &err)) {

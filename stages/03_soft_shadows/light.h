@@ -35,7 +35,11 @@ bool visible(const struct world *w, const struct hit *h, vec3 to, struct stats *
 
 /* Irradiance at h from every light of the scene that h can see; area
  * lights are sampled with shadow rays as `sampling` says. */
-vec3 direct_irradiance(const struct world *w, const struct hit *h,
-    const struct shadow_sampling *sampling, struct rng *rng, struct stats *st);
+vec3 direct_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct shadow_sampling *sampling,
+    struct rng *rng,
+    struct stats *st);
 
 #endif /* LIGHT_H */

@@ -14,10 +14,10 @@
 #include "vec3.h"
 
 /* The scene features this stage models (see feature_table.h). */
-#define RENDER_FEATURES                                                                        \
-    (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_AMBIENT) | FEATURE_BIT(FEAT_MESH)          \
-        | FEATURE_BIT(FEAT_AREA_LIGHT) | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS)       \
-        | FEATURE_BIT(FEAT_BLEND) | FEATURE_BIT(FEAT_CHECKER))
+#define RENDER_FEATURES \
+    (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_AMBIENT) | FEATURE_BIT(FEAT_MESH) \
+     | FEATURE_BIT(FEAT_AREA_LIGHT) | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS) \
+     | FEATURE_BIT(FEAT_BLEND) | FEATURE_BIT(FEAT_CHECKER))
 
 struct renderer {
     const struct scene *scene;
@@ -29,7 +29,12 @@ struct renderer {
 
 /* Radiance leaving the surface at h (where r hit it) towards r's origin;
  * r is the depth-th ray of its chain. */
-vec3 shade(const struct renderer *renderer, ray r, const struct hit *h, int depth, struct rng *rng,
+vec3 shade(
+    const struct renderer *renderer,
+    ray r,
+    const struct hit *h,
+    int depth,
+    struct rng *rng,
     struct stats *st);
 
 /* Radiance arriving at r.o from direction -r.d; r is the depth-th ray of

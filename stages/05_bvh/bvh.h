@@ -41,10 +41,10 @@ struct hit;
 
 struct bvh_node {
     float lo[3], hi[3]; /* bounds, rounded outward: they contain the primitives exactly */
-    uint32_t index;     /* interior: the second child; leaf: the first slot of prims */
-    uint16_t count;     /* primitives in a leaf; 0 for an interior node */
-    uint8_t axis;       /* interior: the split axis (0 x, 1 y, 2 z) */
-    uint8_t flags;      /* unused, 0 */
+    uint32_t index; /* interior: the second child; leaf: the first slot of prims */
+    uint16_t count; /* primitives in a leaf; 0 for an interior node */
+    uint8_t axis; /* interior: the split axis (0 x, 1 y, 2 z) */
+    uint8_t flags; /* unused, 0 */
 };
 
 static_assert(sizeof(struct bvh_node) == 32, "two nodes per 64-byte cache line");
@@ -52,13 +52,13 @@ static_assert(sizeof(struct bvh_node) == 32, "two nodes per 64-byte cache line")
 struct bvh {
     struct bvh_node *nodes; /* nodes[0] is the root */
     int n_nodes;
-    int *prims;             /* primitive numbers in leaf order */
+    int *prims; /* primitive numbers in leaf order */
     int n_prims;
-    int depth;              /* levels, the root being level 1 */
-    int max_leaf;           /* most primitives in one leaf */
-    double mean_leaf;       /* mean primitives per leaf */
+    int depth; /* levels, the root being level 1 */
+    int max_leaf; /* most primitives in one leaf */
+    double mean_leaf; /* mean primitives per leaf */
     int n_leaves;
-    size_t bytes;           /* memory held by the structure */
+    size_t bytes; /* memory held by the structure */
     /* Triangles' corners copied in leaf order (3 per slot of prims; unused
      * for other primitives), so a leaf's triangles are read from one place
      * instead of through three index arrays.  NULL when there are none. */
@@ -85,6 +85,7 @@ bool bvh_intersect(
     struct stats *st);
 
 /* True when any primitive is hit with t in (0, t_max); stops at the first. */
-bool bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, struct stats *st);
+bool
+bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, struct stats *st);
 
 #endif /* BVH_H */

@@ -70,8 +70,13 @@ transmittance(const struct world *w, const struct hit *h, vec3 to, struct stats 
  * light of L cos cos' / r^2 dA, with y drawn with density 1/A), zero when
  * the light faces away or is blocked.  *blocked tells which of the two. */
 static vec3
-light_sample_irradiance(const struct world *w, const struct hit *h,
-    const struct area_light *light, vec3 y, struct stats *st, bool *blocked)
+light_sample_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct area_light *light,
+    vec3 y,
+    struct stats *st,
+    bool *blocked)
 {
     vec3 to_light = vec3_sub(y, h->p);
     real dist2 = vec3_length2(to_light);
@@ -93,8 +98,14 @@ light_sample_irradiance(const struct world *w, const struct hit *h,
  * unbiased, so their mean is, and no two crowd together).  *n_blocked
  * counts the samples the light was blocked for. */
 static vec3
-sum_light_samples(const struct world *w, const struct hit *h, const struct area_light *light,
-    int n, struct rng *rng, struct stats *st, int *n_blocked)
+sum_light_samples(
+    const struct world *w,
+    const struct hit *h,
+    const struct area_light *light,
+    int n,
+    struct rng *rng,
+    struct stats *st,
+    int *n_blocked)
 {
     int k = strata_columns(n);
     int m = n / k;
@@ -145,7 +156,9 @@ unoccluded_irradiance(const struct hit *h, const struct area_light *light)
     if (vec3_dot(area_light_normal(light), vec3_sub(h->p, light->corner)) <= 0) {
         return vec3_splat(0); /* behind the one-sided light */
     }
-    vec3 corners[4] = {light->corner, vec3_add(light->corner, light->edge1),
+    vec3 corners[4] = {
+        light->corner,
+        vec3_add(light->corner, light->edge1),
         vec3_add(vec3_add(light->corner, light->edge1), light->edge2),
         vec3_add(light->corner, light->edge2)};
     vec3 poly[5];
@@ -170,8 +183,13 @@ unoccluded_irradiance(const struct hit *h, const struct area_light *light)
  * it is in a penumbra and gets more samples, averaged with the probes.  The
  * price is a bias where a thin shadow slips between all the probes. */
 static vec3
-area_light_irradiance(const struct world *w, const struct hit *h, const struct area_light *light,
-    const struct shadow_sampling *sampling, struct rng *rng, struct stats *st)
+area_light_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct area_light *light,
+    const struct shadow_sampling *sampling,
+    struct rng *rng,
+    struct stats *st)
 {
     int blocked = 0;
     if (sampling->adaptive[0] == 0) {
@@ -193,8 +211,12 @@ area_light_irradiance(const struct world *w, const struct hit *h, const struct a
 }
 
 vec3
-direct_irradiance(const struct world *w, const struct hit *h,
-    const struct shadow_sampling *sampling, struct rng *rng, struct stats *st)
+direct_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct shadow_sampling *sampling,
+    struct rng *rng,
+    struct stats *st)
 {
     const struct scene *s = w->scene;
     vec3 e = vec3_splat(0);

@@ -40,7 +40,11 @@ vec3 transmittance(const struct world *w, const struct hit *h, vec3 to, struct s
 
 /* Irradiance at h from every light of the scene that h can see; area
  * lights are sampled with shadow rays as `sampling` says. */
-vec3 direct_irradiance(const struct world *w, const struct hit *h,
-    const struct shadow_sampling *sampling, struct rng *rng, struct stats *st);
+vec3 direct_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct shadow_sampling *sampling,
+    struct rng *rng,
+    struct stats *st);
 
 #endif /* LIGHT_H */

@@ -26,7 +26,7 @@ checker_albedo(const struct material *m, const struct hit *h)
 {
     vec3 q = vec3_sub(h->p, vec3_splat(2 * h->error));
     int parity = cell_parity(q.x, m->checker_size) ^ cell_parity(q.y, m->checker_size)
-        ^ cell_parity(q.z, m->checker_size);
+                 ^ cell_parity(q.z, m->checker_size);
     return parity ? m->albedo2 : m->albedo;
 }
 
@@ -51,8 +51,13 @@ diffuse_albedo(const struct material *m, const struct hit *h)
 /* Radiance arriving at h from direction d, along a new ray of the chain;
  * nothing once the chain is max_depth rays long. */
 static vec3
-trace_on(const struct renderer *renderer, const struct hit *h, vec3 d, int depth,
-    struct rng *rng, struct stats *st)
+trace_on(
+    const struct renderer *renderer,
+    const struct hit *h,
+    vec3 d,
+    int depth,
+    struct rng *rng,
+    struct stats *st)
 {
     if (depth >= renderer->max_depth) {
         return vec3_splat(0);
@@ -65,8 +70,14 @@ trace_on(const struct renderer *renderer, const struct hit *h, vec3 d, int depth
  * Fresnel reflectance F and 1 - F.  Which side the ray arrives from decides
  * whether it enters (eta = 1 / ior) or leaves (eta = ior). */
 static vec3
-shade_glass(const struct renderer *renderer, const struct material *m, ray r,
-    const struct hit *h, int depth, struct rng *rng, struct stats *st)
+shade_glass(
+    const struct renderer *renderer,
+    const struct material *m,
+    ray r,
+    const struct hit *h,
+    int depth,
+    struct rng *rng,
+    struct stats *st)
 {
     vec3 n = vec3_dot(r.d, h->n) < 0 ? h->n : h->ng;
     real eta = h->front_face ? 1 / m->ior : m->ior;
@@ -80,7 +91,12 @@ shade_glass(const struct renderer *renderer, const struct material *m, ray r,
 }
 
 vec3
-shade(const struct renderer *renderer, ray r, const struct hit *h, int depth, struct rng *rng,
+shade(
+    const struct renderer *renderer,
+    ray r,
+    const struct hit *h,
+    int depth,
+    struct rng *rng,
     struct stats *st)
 {
     const struct scene *s = renderer->scene;

@@ -75,9 +75,13 @@ box_empty(void)
 static struct box
 box_add_point(struct box b, vec3 p)
 {
-    b.lo = (vec3){p.x < b.lo.x ? p.x : b.lo.x, p.y < b.lo.y ? p.y : b.lo.y,
+    b.lo = (vec3){
+        p.x < b.lo.x ? p.x : b.lo.x,
+        p.y < b.lo.y ? p.y : b.lo.y,
         p.z < b.lo.z ? p.z : b.lo.z};
-    b.hi = (vec3){p.x > b.hi.x ? p.x : b.hi.x, p.y > b.hi.y ? p.y : b.hi.y,
+    b.hi = (vec3){
+        p.x > b.hi.x ? p.x : b.hi.x,
+        p.y > b.hi.y ? p.y : b.hi.y,
         p.z > b.hi.z ? p.z : b.hi.z};
     return b;
 }
@@ -278,7 +282,8 @@ build_subtree(struct builder *b, int begin, int end, int depth)
     uint32_t id = (uint32_t)bvh->n_nodes++;
     bvh->depth = depth > bvh->depth ? depth : bvh->depth;
     if (end - begin <= BVH_MAX_LEAF) {
-        bvh->nodes[id] = (struct bvh_node){.index = (uint32_t)begin, .count = (uint16_t)(end - begin)};
+        bvh->nodes[id] =
+            (struct bvh_node){.index = (uint32_t)begin, .count = (uint16_t)(end - begin)};
         return id;
     }
     int axis = widest_centroid_axis(b->refs + begin, end - begin);
@@ -300,7 +305,8 @@ make_refs(const struct world *w, struct build_ref *refs)
         struct box b = prim_bounds(w, prim);
         all = box_union(all, b);
         vec3 c = vec3_scale(vec3_add(b.lo, b.hi), (real)0.5);
-        refs[prim] = (struct build_ref){{float_below(c.x), float_below(c.y), float_below(c.z)}, prim};
+        refs[prim] =
+            (struct build_ref){{float_below(c.x), float_below(c.y), float_below(c.z)}, prim};
     }
     return all;
 }
@@ -464,8 +470,8 @@ bvh_free(struct bvh *bvh)
 /* A ray prepared for slab tests. */
 struct slab_ray {
     real o[3];
-    real inv_d[3];     /* 1/d on the axes the ray is not parallel to */
-    bool parallel[3];  /* d = 0 (or so small that 1/d overflows) */
+    real inv_d[3]; /* 1/d on the axes the ray is not parallel to */
+    bool parallel[3]; /* d = 0 (or so small that 1/d overflows) */
     bool enters_hi[3]; /* d < 0: the ray enters a slab through hi */
 };
 
@@ -559,10 +565,12 @@ intersect_slot(
  */
 struct traversal {
     struct slab_ray sr;
+
     struct {
         uint32_t id;
         real t_entry;
     } stack[BVH_MAX_DEPTH];
+
     int top;
     uint64_t visits, tests;
 };

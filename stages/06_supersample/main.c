@@ -33,13 +33,23 @@ check_output(const char *path, struct diag *err)
 {
     enum image_format format = image_format_from_path(path);
     if (format == IMAGE_FORMAT_UNKNOWN) {
-        diag_set(err, NULL, 0, 0, "cannot tell the format of '%s': use .png, .ppm, .pfm or .exr",
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "cannot tell the format of '%s': use .png, .ppm, .pfm or .exr",
             path);
         return false;
     }
     if (format == IMAGE_FORMAT_EXR && !image_exr_available()) {
-        diag_set(err, NULL, 0, 0,
-            "'%s': built without OpenEXR; install libopenexr-dev and rebuild to write .exr", path);
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "'%s': built without OpenEXR; install libopenexr-dev and rebuild to write .exr",
+            path);
         return false;
     }
     return true;
@@ -53,7 +63,12 @@ choose_spp(struct renderer *renderer, const struct options *opt, struct diag *er
     renderer->spp = opt->spp ? opt->spp : 4;
     int k = (int)sqrt((double)renderer->spp);
     if (renderer->aa == AA_GRID && k * k != renderer->spp) {
-        diag_set(err, NULL, 0, 0, "--aa grid needs a square --spp (1, 4, 9, 16, ...), got %d",
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "--aa grid needs a square --spp (1, 4, 9, 16, ...), got %d",
             renderer->spp);
         return false;
     }
@@ -93,8 +108,12 @@ image_size(const struct scene *scene, const struct options *opt, int *width, int
 }
 
 static void
-fill_report(struct report *rep, const struct options *opt, const struct render_job *job,
-    const struct render_result *result, int spp_per_pass)
+fill_report(
+    struct report *rep,
+    const struct options *opt,
+    const struct render_job *job,
+    const struct render_result *result,
+    int spp_per_pass)
 {
     rep->stage = STAGE_NAME;
     rep->scene = opt->scene_path;
@@ -112,8 +131,12 @@ fill_report(struct report *rep, const struct options *opt, const struct render_j
 
 /* Write the image and the statistics; returns the exit status. */
 static int
-write_outputs(const struct image *image, const char *output, const struct options *opt,
-    struct report *rep, double start)
+write_outputs(
+    const struct image *image,
+    const char *output,
+    const struct options *opt,
+    struct report *rep,
+    double start)
 {
     struct diag err;
     if (!image_write(image, output, &err)) {
@@ -154,8 +177,12 @@ build_acceleration(struct renderer *renderer, bool use_bvh, struct report *rep, 
 }
 
 static int
-render_and_write(struct renderer *renderer, const struct options *opt, const char *output,
-    struct report *rep, double start)
+render_and_write(
+    struct renderer *renderer,
+    const struct options *opt,
+    const char *output,
+    struct report *rep,
+    double start)
 {
     const struct scene *scene = renderer->scene;
     struct render_job job = {

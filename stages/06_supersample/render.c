@@ -26,7 +26,7 @@ checker_albedo(const struct material *m, const struct hit *h)
 {
     vec3 q = vec3_sub(h->p, vec3_splat(2 * h->error));
     int parity = cell_parity(q.x, m->checker_size) ^ cell_parity(q.y, m->checker_size)
-        ^ cell_parity(q.z, m->checker_size);
+                 ^ cell_parity(q.z, m->checker_size);
     return parity ? m->albedo2 : m->albedo;
 }
 
@@ -51,8 +51,13 @@ diffuse_albedo(const struct material *m, const struct hit *h)
 /* Radiance arriving at h from direction d, along a new ray of the chain;
  * nothing once the chain is max_depth rays long. */
 static vec3
-trace_on(const struct renderer *renderer, const struct hit *h, vec3 d, int depth,
-    struct rng *rng, struct stats *st)
+trace_on(
+    const struct renderer *renderer,
+    const struct hit *h,
+    vec3 d,
+    int depth,
+    struct rng *rng,
+    struct stats *st)
 {
     if (depth >= renderer->max_depth) {
         return vec3_splat(0);
@@ -65,8 +70,14 @@ trace_on(const struct renderer *renderer, const struct hit *h, vec3 d, int depth
  * Fresnel reflectance F and 1 - F.  Which side the ray arrives from decides
  * whether it enters (eta = 1 / ior) or leaves (eta = ior). */
 static vec3
-shade_glass(const struct renderer *renderer, const struct material *m, ray r,
-    const struct hit *h, int depth, struct rng *rng, struct stats *st)
+shade_glass(
+    const struct renderer *renderer,
+    const struct material *m,
+    ray r,
+    const struct hit *h,
+    int depth,
+    struct rng *rng,
+    struct stats *st)
 {
     vec3 n = vec3_dot(r.d, h->n) < 0 ? h->n : h->ng;
     real eta = h->front_face ? 1 / m->ior : m->ior;
@@ -80,7 +91,12 @@ shade_glass(const struct renderer *renderer, const struct material *m, ray r,
 }
 
 vec3
-shade(const struct renderer *renderer, ray r, const struct hit *h, int depth, struct rng *rng,
+shade(
+    const struct renderer *renderer,
+    ray r,
+    const struct hit *h,
+    int depth,
+    struct rng *rng,
     struct stats *st)
 {
     const struct scene *s = renderer->scene;
@@ -141,8 +157,16 @@ luminance(vec3 c)
 /* The sum of n samples of pixel (px, py); widens [*lum_min, *lum_max] to
  * the range of their luminances. */
 static vec3
-sum_samples(const struct renderer *renderer, int px, int py, int pattern, int n,
-    struct rng *rng, struct stats *st, real *lum_min, real *lum_max)
+sum_samples(
+    const struct renderer *renderer,
+    int px,
+    int py,
+    int pattern,
+    int n,
+    struct rng *rng,
+    struct stats *st,
+    real *lum_min,
+    real *lum_max)
 {
     vec3 sum = vec3_splat(0);
     for (int i = 0; i < n; i++) {
@@ -163,8 +187,7 @@ sum_samples(const struct renderer *renderer, int px, int py, int pattern, int n,
  * where their contrast (max - min) / (max + min) exceeds the threshold - an
  * edge, a shadow boundary, a texture - the pixel gets all spp samples. */
 static vec3
-adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng,
-    struct stats *st)
+adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng, struct stats *st)
 {
     real lo = REAL_MAX;
     real hi = -REAL_MAX;

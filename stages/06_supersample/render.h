@@ -14,15 +14,15 @@
 #include "vec3.h"
 
 /* The scene features this stage models (see feature_table.h). */
-#define RENDER_FEATURES                                                                        \
-    (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_AMBIENT) | FEATURE_BIT(FEAT_MESH)          \
-        | FEATURE_BIT(FEAT_AREA_LIGHT) | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS)       \
-        | FEATURE_BIT(FEAT_BLEND) | FEATURE_BIT(FEAT_CHECKER))
+#define RENDER_FEATURES \
+    (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_AMBIENT) | FEATURE_BIT(FEAT_MESH) \
+     | FEATURE_BIT(FEAT_AREA_LIGHT) | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS) \
+     | FEATURE_BIT(FEAT_BLEND) | FEATURE_BIT(FEAT_CHECKER))
 
 /* Where a pixel's camera samples go (ORDER: the --aa choices). */
 enum aa_pattern {
-    AA_GRID,     /* a regular k x k grid (spp = k^2) */
-    AA_JITTER,   /* one random sample in each cell of that grid */
+    AA_GRID, /* a regular k x k grid (spp = k^2) */
+    AA_JITTER, /* one random sample in each cell of that grid */
     AA_ADAPTIVE, /* a few jittered samples; all spp only where they disagree */
 };
 
@@ -35,14 +35,19 @@ struct renderer {
     struct camera camera;
     struct shadow_sampling shadow;
     int max_depth; /* longest chain of rays, the camera ray included */
-    int spp;       /* camera samples per pixel */
-    int aa;        /* enum aa_pattern */
+    int spp; /* camera samples per pixel */
+    int aa; /* enum aa_pattern */
     real aa_threshold;
 };
 
 /* Radiance leaving the surface at h (where r hit it) towards r's origin;
  * r is the depth-th ray of its chain. */
-vec3 shade(const struct renderer *renderer, ray r, const struct hit *h, int depth, struct rng *rng,
+vec3 shade(
+    const struct renderer *renderer,
+    ray r,
+    const struct hit *h,
+    int depth,
+    struct rng *rng,
     struct stats *st);
 
 /* Radiance arriving at r.o from direction -r.d; r is the depth-th ray of

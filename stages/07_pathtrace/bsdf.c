@@ -25,7 +25,11 @@ channel_mean(vec3 c)
  * the probability of its Fresnel weight makes the weight exactly 1 (no
  * absorption), and total internal reflection is F = 1. */
 static bool
-sample_glass(const struct material *m, const struct hit *h, vec3 d, struct rng *rng,
+sample_glass(
+    const struct material *m,
+    const struct hit *h,
+    vec3 d,
+    struct rng *rng,
     struct bsdf_sample *out)
 {
     vec3 n = vec3_dot(d, h->n) < 0 ? h->n : h->ng;
@@ -41,8 +45,13 @@ sample_glass(const struct material *m, const struct hit *h, vec3 d, struct rng *
 }
 
 bool
-sample_bsdf(const struct material *m, vec3 albedo, const struct hit *h, vec3 d,
-    struct rng *rng, struct bsdf_sample *out)
+sample_bsdf(
+    const struct material *m,
+    vec3 albedo,
+    const struct hit *h,
+    vec3 d,
+    struct rng *rng,
+    struct bsdf_sample *out)
 {
     if (m->kind == MAT_GLASS) {
         return sample_glass(m, h, d, rng, out);

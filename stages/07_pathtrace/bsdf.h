@@ -14,8 +14,8 @@
 #include "vec3.h"
 
 struct bsdf_sample {
-    vec3 d;        /* the new direction, unit */
-    vec3 weight;   /* f(d) |cos| / pdf(d), per channel */
+    vec3 d; /* the new direction, unit */
+    vec3 weight; /* f(d) |cos| / pdf(d), per channel */
     bool specular; /* a mirror or glass bounce: next-event estimation cannot find its light */
 };
 
@@ -29,7 +29,12 @@ vec3 sample_cosine_hemisphere(real u, real v);
  * reflection or refraction) in proportion to what it reflects, then a
  * direction.  False when the path ends here (nothing is reflected, or the
  * direction would pass through the surface). */
-bool sample_bsdf(const struct material *m, vec3 albedo, const struct hit *h, vec3 d,
-    struct rng *rng, struct bsdf_sample *out);
+bool sample_bsdf(
+    const struct material *m,
+    vec3 albedo,
+    const struct hit *h,
+    vec3 d,
+    struct rng *rng,
+    struct bsdf_sample *out);
 
 #endif /* BSDF_H */

@@ -11,9 +11,9 @@
 struct camera {
     vec3 origin;
     vec3 forward, right, up; /* orthonormal, right-handed: right = forward x up */
-    real half_width;         /* tan(vfov/2) * width/height: film half-extent at distance 1 */
-    real half_height;        /* tan(vfov/2) */
-    int width, height;       /* pixels */
+    real half_width; /* tan(vfov/2) * width/height: film half-extent at distance 1 */
+    real half_height; /* tan(vfov/2) */
+    int width, height; /* pixels */
 };
 
 /* Set up a camera for an image of width x height pixels.  desc has been

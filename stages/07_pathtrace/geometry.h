@@ -19,16 +19,16 @@
 #include "vec3.h"
 
 struct hit {
-    real t;          /* distance along the (unit) ray direction */
-    real u, v;       /* surface coordinates: barycentric for triangles, edge fractions for quads */
-    int prim;        /* index in the primitive list */
-    vec3 p;          /* the hit point */
-    vec3 ng;         /* geometric normal, unit, facing the ray's origin */
-    vec3 n;          /* shading normal, unit, on the same side as ng */
+    real t; /* distance along the (unit) ray direction */
+    real u, v; /* surface coordinates: barycentric for triangles, edge fractions for quads */
+    int prim; /* index in the primitive list */
+    vec3 p; /* the hit point */
+    vec3 ng; /* geometric normal, unit, facing the ray's origin */
+    vec3 n; /* shading normal, unit, on the same side as ng */
     bool front_face; /* the ray arrived on the side the outward normal points to */
     int material;
     real error; /* bound on |computed p - true surface point| (scene units) */
-    int light;  /* index of the area light hit, or -1 */
+    int light; /* index of the area light hit, or -1 */
 };
 
 /* The shapes a ray can hit: the scene's, numbered as one list. */
@@ -36,7 +36,7 @@ struct world {
     const struct scene *scene;
     int n_prims;
     struct bvh bvh; /* built by world_build_bvh */
-    bool use_bvh;   /* false: test every primitive (the reference) */
+    bool use_bvh; /* false: test every primitive (the reference) */
 };
 
 struct world world_make(const struct scene *s);

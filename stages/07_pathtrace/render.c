@@ -28,7 +28,7 @@ checker_albedo(const struct material *m, const struct hit *h)
 {
     vec3 q = vec3_sub(h->p, vec3_splat(2 * h->error));
     int parity = cell_parity(q.x, m->checker_size) ^ cell_parity(q.y, m->checker_size)
-        ^ cell_parity(q.z, m->checker_size);
+                 ^ cell_parity(q.z, m->checker_size);
     return parity ? m->albedo2 : m->albedo;
 }
 
@@ -53,8 +53,12 @@ diffuse_albedo(const struct material *m, const struct hit *h)
 /* Next-event estimation: the direct light reaching the diffuse part of the
  * surface at h, by shadow rays to the lights (light.c), times albedo / pi. */
 static vec3
-direct_light(const struct renderer *renderer, const struct hit *h, vec3 albedo,
-    struct rng *rng, struct stats *st)
+direct_light(
+    const struct renderer *renderer,
+    const struct hit *h,
+    vec3 albedo,
+    struct rng *rng,
+    struct stats *st)
 {
     struct shadow_sampling sampling = renderer->shadow;
     if (!renderer->nee) {
@@ -80,8 +84,13 @@ emitted(const struct renderer *renderer, const struct hit *h, const struct path 
 }
 
 vec3
-shade(const struct renderer *renderer, ray *r, const struct hit *h, struct path *path,
-    struct rng *rng, struct stats *st)
+shade(
+    const struct renderer *renderer,
+    ray *r,
+    const struct hit *h,
+    struct path *path,
+    struct rng *rng,
+    struct stats *st)
 {
     const struct scene *s = renderer->scene;
     if (h->light >= 0) {
@@ -177,8 +186,16 @@ luminance(vec3 c)
 /* The sum of n samples of pixel (px, py); widens [*lum_min, *lum_max] to
  * the range of their luminances. */
 static vec3
-sum_samples(const struct renderer *renderer, int px, int py, int pattern, int n,
-    struct rng *rng, struct stats *st, real *lum_min, real *lum_max)
+sum_samples(
+    const struct renderer *renderer,
+    int px,
+    int py,
+    int pattern,
+    int n,
+    struct rng *rng,
+    struct stats *st,
+    real *lum_min,
+    real *lum_max)
 {
     vec3 sum = vec3_splat(0);
     for (int i = 0; i < n; i++) {
@@ -199,8 +216,7 @@ sum_samples(const struct renderer *renderer, int px, int py, int pattern, int n,
  * where their contrast (max - min) / (max + min) exceeds the threshold - an
  * edge, a shadow boundary, a texture - the pixel gets all spp samples. */
 static vec3
-adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng,
-    struct stats *st)
+adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng, struct stats *st)
 {
     real lo = REAL_MAX;
     real hi = -REAL_MAX;

@@ -14,18 +14,18 @@
 #include "vec3.h"
 
 /* The scene features this stage models (see feature_table.h). */
-#define RENDER_FEATURES                                                                        \
-    (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_MESH) | FEATURE_BIT(FEAT_AREA_LIGHT)       \
-        | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS) | FEATURE_BIT(FEAT_BLEND)           \
-        | FEATURE_BIT(FEAT_CHECKER) | FEATURE_BIT(FEAT_ENVIRONMENT))
+#define RENDER_FEATURES \
+    (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_MESH) | FEATURE_BIT(FEAT_AREA_LIGHT) \
+     | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS) | FEATURE_BIT(FEAT_BLEND) \
+     | FEATURE_BIT(FEAT_CHECKER) | FEATURE_BIT(FEAT_ENVIRONMENT))
 
 /* Russian roulette starts once a path has this many rays (camera ray = 1). */
 #define RR_MIN_DEPTH 3
 
 /* Where a pixel's camera samples go (ORDER: the --aa choices). */
 enum aa_pattern {
-    AA_GRID,     /* a regular k x k grid (spp = k^2) */
-    AA_JITTER,   /* one random sample in each cell of that grid */
+    AA_GRID, /* a regular k x k grid (spp = k^2) */
+    AA_JITTER, /* one random sample in each cell of that grid */
     AA_ADAPTIVE, /* a few jittered samples; all spp only where they disagree */
 };
 
@@ -38,11 +38,11 @@ struct renderer {
     struct camera camera;
     struct shadow_sampling shadow;
     int max_depth; /* longest chain of rays, the camera ray included */
-    int spp;       /* camera samples per pixel */
-    int aa;        /* enum aa_pattern */
+    int spp; /* camera samples per pixel */
+    int aa; /* enum aa_pattern */
     real aa_threshold;
-    bool nee;        /* next-event estimation: shadow rays to area lights */
-    bool rr;         /* Russian roulette */
+    bool nee; /* next-event estimation: shadow rays to area lights */
+    bool rr; /* Russian roulette */
     real time_limit; /* seconds; 0: none */
 };
 
@@ -57,8 +57,13 @@ struct path {
 /* One vertex of a path, where *r hit h: returns the light it adds to the
  * path (emission, and direct light by shadow rays), and continues the path:
  * *r becomes the next ray and path->beta its throughput (0 when it ends). */
-vec3 shade(const struct renderer *renderer, ray *r, const struct hit *h, struct path *path,
-    struct rng *rng, struct stats *st);
+vec3 shade(
+    const struct renderer *renderer,
+    ray *r,
+    const struct hit *h,
+    struct path *path,
+    struct rng *rng,
+    struct stats *st);
 
 /* Radiance arriving at r.o from direction -r.d, estimated by one random
  * path; r is the depth-th ray of its chain (the camera ray is 1), and none

@@ -51,8 +51,24 @@ TEST(shared_options_long_short_and_equals)
     struct knobs k = {0};
     struct options opt;
     struct diag err;
-    const char *argv[] = {"render", "-o", "x.pfm", "-W", "64", "--height=32", "-s", "16", "-t",
-        "3", "--seed", "99", "--stats", "s.json", "-q", "--strict", "dir/b.scene"};
+    const char *argv[] = {
+        "render",
+        "-o",
+        "x.pfm",
+        "-W",
+        "64",
+        "--height=32",
+        "-s",
+        "16",
+        "-t",
+        "3",
+        "--seed",
+        "99",
+        "--stats",
+        "s.json",
+        "-q",
+        "--strict",
+        "dir/b.scene"};
     CHECK(parse(&k, &opt, &err, 17, argv) == CLI_OK);
     CHECK(strcmp(opt.output, "x.pfm") == 0);
     CHECK(opt.width == 64 && opt.height == 32 && opt.spp == 16 && opt.threads == 3);
@@ -65,8 +81,18 @@ TEST(stage_options)
     struct knobs k = {.on = true};
     struct options opt;
     struct diag err;
-    const char *argv[] = {"render", "--samples", "8", "--adaptive", "16,128", "--time=2.5",
-        "--thing", "--aa", "adaptive", "--no-other", "s.scene"};
+    const char *argv[] = {
+        "render",
+        "--samples",
+        "8",
+        "--adaptive",
+        "16,128",
+        "--time=2.5",
+        "--thing",
+        "--aa",
+        "adaptive",
+        "--no-other",
+        "s.scene"};
     CHECK(parse(&k, &opt, &err, 11, argv) == CLI_OK);
     CHECK(k.samples == 8 && k.pair[0] == 16 && k.pair[1] == 128);
     CHECK(k.limit == (real)2.5 && k.flag && !k.on && k.choice == 2);
@@ -77,14 +103,14 @@ TEST(stage_options)
 TEST(errors_say_what_was_expected)
 {
     const char *cases[][3] = {
-        {"--samples", "0", "s"},    /* below range */
-        {"--samples", "x", "s"},    /* not a number */
-        {"--adaptive", "16", "s"},  /* not a pair */
-        {"--aa", "fancy", "s"},     /* not a choice */
-        {"--time", "nan", "s"},     /* not finite */
+        {"--samples", "0", "s"}, /* below range */
+        {"--samples", "x", "s"}, /* not a number */
+        {"--adaptive", "16", "s"}, /* not a pair */
+        {"--aa", "fancy", "s"}, /* not a choice */
+        {"--time", "nan", "s"}, /* not finite */
         {"--frobnicate", "s", "t"}, /* unknown */
-        {"-W", "99999", "s"},       /* too large */
-        {"s", "t", "-q"},           /* two scenes */
+        {"-W", "99999", "s"}, /* too large */
+        {"s", "t", "-q"}, /* two scenes */
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         struct knobs k = {0};

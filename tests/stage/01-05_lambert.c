@@ -31,7 +31,13 @@ project(const double p[3], double *fx, double *fy)
  * coordinate[axis] = level with the given normal: Lambert with one point
  * light, no occlusion. */
 static double
-expected_radiance(int px, int py, int axis, double level, const double normal[3], double albedo,
+expected_radiance(
+    int px,
+    int py,
+    int axis,
+    double level,
+    const double normal[3],
+    double albedo,
     double intensity)
 {
     double t = tan(20 * acos(-1.0) / 180);
@@ -48,8 +54,13 @@ static void
 check_pixel(const struct image *img, int px, int py, double expected_red)
 {
     double got = image_pixel(img, px, py)[0];
-    CHECK_MSG(fabs(got - expected_red) <= REL_TOL * expected_red, "pixel (%d, %d): %.9g, expected %.9g",
-        px, py, got, expected_red);
+    CHECK_MSG(
+        fabs(got - expected_red) <= REL_TOL * expected_red,
+        "pixel (%d, %d): %.9g, expected %.9g",
+        px,
+        py,
+        got,
+        expected_red);
 }
 
 TEST(floor_and_ceiling_pixels_match_lambert)
@@ -81,12 +92,11 @@ TEST(floor_and_ceiling_pixels_match_lambert)
 
 TEST(ambient_term_alone)
 {
-    static const char text[] =
-        "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 30\n"
-        "image width 9 height 9\n"
-        "ambient color 0.2 0.4 0.8\n"
-        "material grey diffuse albedo 0.5 0.25 1\n"
-        "sphere center 0 0 0 radius 1 material grey\n";
+    static const char text[] = "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 30\n"
+                               "image width 9 height 9\n"
+                               "ambient color 0.2 0.4 0.8\n"
+                               "material grey diffuse albedo 0.5 0.25 1\n"
+                               "sphere center 0 0 0 radius 1 material grey\n";
     const char *scene = test_tmp_path("ambient.scene");
     test_write_file(scene, text);
     struct image img = {0};
@@ -103,6 +113,4 @@ TEST(ambient_term_alone)
     image_free(&img);
 }
 
-TEST_MAIN(
-    TEST_ENTRY(floor_and_ceiling_pixels_match_lambert),
-    TEST_ENTRY(ambient_term_alone))
+TEST_MAIN(TEST_ENTRY(floor_and_ceiling_pixels_match_lambert), TEST_ENTRY(ambient_term_alone))

@@ -38,7 +38,7 @@ TEST(vertical_fov_at_top_and_bottom_edges)
     ray bottom = camera_ray(&cam, 128, 256);
     CHECK_NEAR(angle_between(top.d, forward), 20 * acos(-1.0) / 180, 1e-6);
     CHECK_NEAR(angle_between(bottom.d, forward), 20 * acos(-1.0) / 180, 1e-6);
-    CHECK(top.d.y > 0);    /* row 0 is the top of the picture */
+    CHECK(top.d.y > 0); /* row 0 is the top of the picture */
     CHECK(bottom.d.y < 0);
 }
 

@@ -12,16 +12,15 @@
 #include "testlib.h"
 
 /* A small, fast scene using every kind of shape and a point light. */
-static const char small_scene[] =
-    "camera origin 0 1 3.9 target 0 1 0 up 0 1 0 fov 40\n"
-    "image width 48 height 32\n"
-    "material white diffuse albedo 0.73 0.73 0.73\n"
-    "material red diffuse albedo 0.65 0.05 0.05\n"
-    "quad corner -1 0 1 edge1 2 0 0 edge2 0 0 -2 material white\n"
-    "quad corner -1 0 -1 edge1 0 2 0 edge2 0 0 2 material red\n"
-    "sphere center -0.45 0.40 -0.30 radius 0.40 material white\n"
-    "triangle v0 0.2 0 0.2 v1 0.8 0 0.2 v2 0.5 0.8 0 material red\n"
-    "point_light position 0 1.9 0 intensity 3 2.5 2\n";
+static const char small_scene[] = "camera origin 0 1 3.9 target 0 1 0 up 0 1 0 fov 40\n"
+                                  "image width 48 height 32\n"
+                                  "material white diffuse albedo 0.73 0.73 0.73\n"
+                                  "material red diffuse albedo 0.65 0.05 0.05\n"
+                                  "quad corner -1 0 1 edge1 2 0 0 edge2 0 0 -2 material white\n"
+                                  "quad corner -1 0 -1 edge1 0 2 0 edge2 0 0 2 material red\n"
+                                  "sphere center -0.45 0.40 -0.30 radius 0.40 material white\n"
+                                  "triangle v0 0.2 0 0.2 v1 0.8 0 0.2 v2 0.5 0.8 0 material red\n"
+                                  "point_light position 0 1.9 0 intensity 3 2.5 2\n";
 
 static const char *
 small_scene_path(void)
@@ -78,9 +77,22 @@ TEST(same_image_whatever_the_thread_count)
 
 TEST(stats_json_has_every_contract_key)
 {
-    static const char *const keys[] = {"width", "height", "spp", "threads", "seed",
-        "seconds_total", "seconds_load", "seconds_build", "seconds_render", "rays_camera",
-        "rays_shadow", "rays_secondary", "prim_tests", "node_visits", "nan_pixels",
+    static const char *const keys[] = {
+        "width",
+        "height",
+        "spp",
+        "threads",
+        "seed",
+        "seconds_total",
+        "seconds_load",
+        "seconds_build",
+        "seconds_render",
+        "rays_camera",
+        "rays_shadow",
+        "rays_secondary",
+        "prim_tests",
+        "node_visits",
+        "nan_pixels",
         "peak_rss_bytes"};
     const char *stats = test_tmp_path("stats.json");
     const char *args[] = {"--stats", stats, "-o", test_tmp_path("s.pfm"), "--seed", "7", NULL};
@@ -141,9 +153,11 @@ TEST(bad_command_lines_exit_2_and_write_nothing)
 TEST(invalid_scene_exits_1_with_location_and_writes_nothing)
 {
     const char *scene = test_tmp_path("bad.scene");
-    test_write_file(scene, "camera origin 0 1 3.9 target 0 1 0 up 0 1 0 fov 40\n"
-                           "image width 8 height 8\n"
-                           "sphere center 0 0 0 radius abc material white\n");
+    test_write_file(
+        scene,
+        "camera origin 0 1 3.9 target 0 1 0 up 0 1 0 fov 40\n"
+        "image width 8 height 8\n"
+        "sphere center 0 0 0 radius abc material white\n");
     const char *out = test_tmp_path("bad.png");
     const char *args[] = {"-o", out, NULL};
     char log[4096];
@@ -160,8 +174,8 @@ TEST(unwritable_output_exits_3)
     const char *args[] = {"-o", test_tmp_path("no-such-dir/out.png"), NULL};
     char log[4096];
     CHECK(test_render(small_scene_path(), args, log, sizeof log) == 3);
-    const char *stats_args[] = {"-o", test_tmp_path("ok.pfm"), "--stats",
-        test_tmp_path("no-such-dir/s.json"), NULL};
+    const char *stats_args[] =
+        {"-o", test_tmp_path("ok.pfm"), "--stats", test_tmp_path("no-such-dir/s.json"), NULL};
     CHECK(test_render(small_scene_path(), stats_args, log, sizeof log) == 3);
 }
 
@@ -171,18 +185,22 @@ TEST(unmodelled_features_are_reported_or_refused)
 {
     int here = stage_number(STAGE_NAME);
     const char *scene = test_tmp_path("features.scene");
-    test_write_file(scene, "camera origin 0 1 3.9 target 0 1 0 up 0 1 0 fov 40\n"
-                           "image width 8 height 8\n"
-                           "background color 0.1 0.1 0.1\n"
-                           "material chrome mirror reflectance 0.9 0.9 0.9\n"
-                           "sphere center 0 1 0 radius 0.5 material chrome\n"
-                           "area_light corner -0.25 1.98 -0.25 edge1 0.5 0 0 edge2 0 0 0.5 "
-                           "radiance 12 10 8\n");
+    test_write_file(
+        scene,
+        "camera origin 0 1 3.9 target 0 1 0 up 0 1 0 fov 40\n"
+        "image width 8 height 8\n"
+        "background color 0.1 0.1 0.1\n"
+        "material chrome mirror reflectance 0.9 0.9 0.9\n"
+        "sphere center 0 1 0 radius 0.5 material chrome\n"
+        "area_light corner -0.25 1.98 -0.25 edge1 0.5 0 0 edge2 0 0 0.5 "
+        "radiance 12 10 8\n");
     const char *out = test_tmp_path("f.pfm");
     const char *args[] = {"-o", out, NULL};
     char log[8192];
     CHECK(test_render(scene, args, log, sizeof log) == 0);
+
     const enum feature used[] = {FEAT_AREA_LIGHT, FEAT_MIRROR, FEAT_ENVIRONMENT};
+
     unsigned modelled = features_of_stage(here);
     for (int i = 0; i < 3; i++) {
         const struct feature_info *info = feature_info(used[i]);
@@ -195,7 +213,7 @@ TEST(unmodelled_features_are_reported_or_refused)
     remove(out);
     const char *strict[] = {"--strict", "-o", out, NULL};
     bool lacks_some = (modelled & FEATURE_BIT(FEAT_AREA_LIGHT)) == 0
-        || (modelled & FEATURE_BIT(FEAT_ENVIRONMENT)) == 0;
+                      || (modelled & FEATURE_BIT(FEAT_ENVIRONMENT)) == 0;
     CHECK(test_render(scene, strict, log, sizeof log) == (lacks_some ? 1 : 0));
     CHECK(test_file_exists(out) == !lacks_some);
 }
