@@ -5,6 +5,9 @@
 #   make sanitize   the same tests built with AddressSanitizer + UBSan (build/sanitize/)
 #   make demo       render the showcase scenes through the stages into out/
 #   make config     what the build found (OpenEXR, tinygltf)
+#   make lab STAGE=05 OUT=dir   a lab handout; make grade LAB=dir grades one
+#   make diffs      docs/diffs/*.diff and the diff table; make branches OUT=dir
+#   make check-labs every check of every handout (make test runs the quick ones)
 #   make clean
 # Knobs: REAL=float (single precision, build/float/), CFLAGS=..., WERROR=1,
 # OPENEXR=0|1, TINYGLTF=0|1.  See common/config.mk.
@@ -30,7 +33,11 @@ test: all
 	@for s in $(STAGES); do \
 		$(MAKE) --no-print-directory -C stages/$$s test 2>&1 | tee $(LOGS)/$$s.log; \
 	done
-	@tests/sum-results.sh $(LOGS)/common.log $(foreach s,$(STAGES),$(LOGS)/$(s).log)
+	@tests/lab/test-lab-tools.sh 2>&1 | tee $(LOGS)/lab-tools.log
+	@tests/lab/check-diffs.sh 2>&1 | tee $(LOGS)/diffs.log
+	@tests/lab/check-labs.sh --quick 2>&1 | tee $(LOGS)/labs.log
+	@tests/sum-results.sh $(LOGS)/common.log $(foreach s,$(STAGES),$(LOGS)/$(s).log) \
+		$(LOGS)/lab-tools.log $(LOGS)/diffs.log $(LOGS)/labs.log
 
 sanitize:
 	@$(MAKE) --no-print-directory SANITIZE=1 test
@@ -54,7 +61,26 @@ demo: all
 	done
 	@echo "wrote out/*.png"
 
+# Coursework: lab handouts, grading, stage diffs (tests/lab/README.md).
+lab:
+	@if [ -z "$(STAGE)" ] || [ -z "$(OUT)" ]; then echo "usage: make lab STAGE=05 OUT=path [SOLUTION=1]" >&2; exit 2; fi
+	@tests/lab/make-lab.sh $(if $(filter 1,$(SOLUTION)),--solution) "$(STAGE)" "$(OUT)"
+
+grade:
+	@if [ -z "$(LAB)" ]; then echo "usage: make grade LAB=path" >&2; exit 2; fi
+	@tests/lab/grade.sh --pristine "$(LAB)"
+
+diffs:
+	@tests/lab/make-diffs.sh
+
+branches:
+	@if [ -z "$(OUT)" ]; then echo "usage: make branches OUT=path [FORCE=1]" >&2; exit 2; fi
+	@tests/lab/make-branches.sh $(if $(filter 1,$(FORCE)),--force) "$(OUT)"
+
+check-labs: all
+	@tests/lab/check-labs.sh --full
+
 clean:
 	rm -rf build
 
-.PHONY: all common test sanitize config demo clean $(STAGES)
+.PHONY: all common test sanitize config demo clean lab grade diffs branches check-labs $(STAGES)

@@ -79,6 +79,16 @@ shade_glass(
     struct rng *rng,
     struct stats *st)
 {
+    /* LAB 04: smooth glass: trace the reflected and the refracted ray, weighted by F
+     * and 1 - F; enter or leave by the side the ray comes from (docs/stages/04_reflect_refract.md#lab)
+     * stub: (void)renderer;
+     * (void)m;
+     * (void)r;
+     * (void)h;
+     * (void)depth;
+     * (void)rng;
+     * (void)st;
+     * return vec3_splat(0); */
     vec3 n = vec3_dot(r.d, h->n) < 0 ? h->n : h->ng;
     real eta = h->front_face ? 1 / m->ior : m->ior;
     real f = fresnel_dielectric(-vec3_dot(r.d, n), eta);
@@ -88,6 +98,7 @@ shade_glass(
         l = vec3_madd(l, trace_on(renderer, h, refracted, depth, rng, st), 1 - f);
     }
     return l;
+    /* END LAB */
 }
 
 vec3

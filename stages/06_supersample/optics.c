@@ -1,6 +1,32 @@
 /* optics.c - reflection, refraction and the dielectric Fresnel equations. */
 #include "optics.h"
 
+/* LAB 04: mirror reflection, Snell refraction with total internal reflection, and
+ * the exact dielectric Fresnel reflectance (docs/stages/04_reflect_refract.md#lab)
+ * stub: vec3
+ * reflect(vec3 d, vec3 n)
+ * {
+ *     (void)n;
+ *     return d;
+ * }
+ *
+ * bool
+ * refract(vec3 d, vec3 n, real eta, vec3 *out)
+ * {
+ *     (void)d;
+ *     (void)n;
+ *     (void)eta;
+ *     (void)out;
+ *     return false;
+ * }
+ *
+ * real
+ * fresnel_dielectric(real cos_i, real eta)
+ * {
+ *     (void)cos_i;
+ *     (void)eta;
+ *     return 1;
+ * } */
 vec3
 reflect(vec3 d, vec3 n)
 {
@@ -45,3 +71,4 @@ fresnel_dielectric(real cos_i, real eta)
     real r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
     return (r_s * r_s + r_p * r_p) / 2;
 }
+/* END LAB */

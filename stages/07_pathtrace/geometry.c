@@ -68,6 +68,13 @@ world_free(struct world *w)
 bool
 intersect_sphere(const struct sphere *sphere, ray r, real t_max, real *t)
 {
+    /* LAB 01: solve the sphere quadratic without cancellation: the nearest t in
+     * (0, t_max) (docs/stages/01_raycast.md#lab)
+     * stub: (void)sphere;
+     * (void)r;
+     * (void)t_max;
+     * (void)t;
+     * return false; */
     vec3 f = vec3_sub(r.o, sphere->center);
     real b = -vec3_dot(f, r.d);
     vec3 perpendicular = vec3_madd(f, r.d, b);
@@ -91,6 +98,7 @@ intersect_sphere(const struct sphere *sphere, ray r, real t_max, real *t)
     }
     *t = t_hit;
     return true;
+    /* END LAB */
 }
 
 /*
@@ -102,6 +110,16 @@ intersect_sphere(const struct sphere *sphere, ray r, real t_max, real *t)
 static bool
 solve_planar(vec3 p0, vec3 e1, vec3 e2, ray r, real *t, real *u, real *v)
 {
+    /* LAB 01: Moller-Trumbore: solve o + t d = p0 + u e1 + v e2 by Cramer's rule
+     * (docs/stages/01_raycast.md#lab)
+     * stub: (void)p0;
+     * (void)e1;
+     * (void)e2;
+     * (void)r;
+     * (void)t;
+     * (void)u;
+     * (void)v;
+     * return false; */
     vec3 pvec = vec3_cross(r.d, e2);
     real det = vec3_dot(e1, pvec);
     if (det == 0) {
@@ -114,6 +132,7 @@ solve_planar(vec3 p0, vec3 e1, vec3 e2, ray r, real *t, real *u, real *v)
     *v = vec3_dot(r.d, qvec) * inv_det;
     *t = vec3_dot(e2, qvec) * inv_det;
     return true;
+    /* END LAB */
 }
 
 bool
@@ -280,6 +299,13 @@ world_intersect(const struct world *w, ray r, real t_max, struct hit *out, struc
 bool
 world_occluded(const struct world *w, ray r, real t_max, struct stats *st)
 {
+    /* LAB 02: an any-hit query: stop at the first primitive hit with t in (0, t_max)
+     * (docs/stages/02_shadows.md#lab)
+     * stub: (void)w;
+     * (void)r;
+     * (void)t_max;
+     * (void)st;
+     * return false; */
     if (w->use_bvh) {
         return bvh_occluded(&w->bvh, w, r, t_max, st);
     }
@@ -292,16 +318,21 @@ world_occluded(const struct world *w, ray r, real t_max, struct stats *st)
     }
     st->prim_tests += (uint64_t)w->n_prims;
     return false;
+    /* END LAB */
 }
 
 ray
 spawn_ray(const struct hit *h, vec3 d)
 {
+    /* LAB 02: push the origin off the surface by the hit's error bound, to the side
+     * d points to (docs/stages/02_shadows.md#lab)
+     * stub: return (ray){h->p, d}; */
     /* Twice the bound: the new origin is clear of the surface even after
      * the offset itself is rounded. */
     real offset = 2 * h->error;
     vec3 n = vec3_dot(d, h->ng) >= 0 ? h->ng : vec3_neg(h->ng);
     return (ray){vec3_madd(h->p, n, offset), d};
+    /* END LAB */
 }
 
 ray

@@ -76,11 +76,16 @@ direct_light(
 static vec3
 emitted(const struct renderer *renderer, const struct hit *h, const struct path *path)
 {
+    /* LAB 07: count a light's emission only where next-event estimation could not
+     * have found it: after the camera ray or a specular bounce (docs/stages/07_pathtrace.md#lab)
+     * stub: (void)path;
+     * return h->front_face ? renderer->scene->area_lights[h->light].radiance : vec3_splat(0); */
     bool counted_by_nee = renderer->nee && !path->specular;
     if (!h->front_face || counted_by_nee) {
         return vec3_splat(0);
     }
     return renderer->scene->area_lights[h->light].radiance;
+    /* END LAB */
 }
 
 vec3
@@ -129,6 +134,10 @@ shade(
 static void
 russian_roulette(struct path *path, struct rng *rng)
 {
+    /* LAB 07: past RR_MIN_DEPTH, survive with probability q from the throughput and
+     * divide the survivor's throughput by q (docs/stages/07_pathtrace.md#lab)
+     * stub: (void)path;
+     * (void)rng; */
     if (path->depth < RR_MIN_DEPTH) {
         return;
     }
@@ -138,6 +147,7 @@ russian_roulette(struct path *path, struct rng *rng)
     } else {
         path->beta = vec3_scale(path->beta, 1 / q);
     }
+    /* END LAB */
 }
 
 vec3
@@ -169,12 +179,21 @@ trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct
 static void
 sample_position(int pattern, int i, int n, struct rng *rng, real *dx, real *dy)
 {
+    /* LAB 06: place sample i of n in cell i of a k x m grid over the pixel: its centre
+     * (grid) or a uniform point in it (jitter) (docs/stages/06_supersample.md#lab)
+     * stub: (void)pattern;
+     * (void)i;
+     * (void)n;
+     * (void)rng;
+     * *dx = (real)0.5;
+     * *dy = (real)0.5; */
     int k = strata_columns(n);
     int m = n / k;
     real u = pattern == AA_GRID ? (real)0.5 : rng_uniform(rng);
     real v = pattern == AA_GRID ? (real)0.5 : rng_uniform(rng);
     *dx = ((real)(i % k) + u) / (real)k;
     *dy = ((real)(i / k) + v) / (real)m;
+    /* END LAB */
 }
 
 static real
@@ -218,6 +237,12 @@ sum_samples(
 static vec3
 adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng, struct stats *st)
 {
+    /* LAB 06: a few probe samples; all spp only where their contrast exceeds the
+     * threshold (docs/stages/06_supersample.md#lab)
+     * stub: real lo = REAL_MAX;
+     * real hi = -REAL_MAX;
+     * vec3 sum = sum_samples(renderer, px, py, AA_JITTER, renderer->spp, rng, st, &lo, &hi);
+     * return vec3_scale(sum, 1 / (real)renderer->spp); */
     real lo = REAL_MAX;
     real hi = -REAL_MAX;
     int probes = renderer->spp < 4 ? renderer->spp : 4;
@@ -230,6 +255,7 @@ adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng,
     int rest = renderer->spp - probes;
     sum = vec3_add(sum, sum_samples(renderer, px, py, AA_JITTER, rest, rng, st, &lo, &hi));
     return vec3_scale(sum, 1 / (real)renderer->spp);
+    /* END LAB */
 }
 
 vec3

@@ -1,0 +1,390 @@
+#!/bin/sh
+# check-labs.sh - check the lab handouts of the stages (part of make test).
+#
+#   check-labs.sh [options] [STAGE...]        (default: every stage)
+#
+# Writes each stage's handout into OUT/NN (make-lab.sh) and checks:
+#   handout    make-lab.sh writes it without a warning: the markers are well
+#              formed, stage NN has a LAB NN region, its docs page a Lab
+#              section
+#   build      the handout builds with WERROR=1 and no warning (--quick: the
+#              stage and the lab's own test programs; else every program)
+#   lab-fails  the lab's tests (tests/stage/NN_*.c, NN-MM_*.c) fail: at least
+#              one reports a failure (a handout whose tests pass is broken);
+#              --quick runs them one TEST() at a time up to the first failure
+#   earlier    the other tests (earlier stages' features) pass     [full]
+#   no-leaks   no line of a LAB NN region is in the handout, unless it is
+#              also outside the regions or trivial (leaks.awk)
+#   solution   with the stage's solution copied in, every test of the
+#              handout passes: the handout is a complete harness     [full]
+# One result line per check, as tests/run-tests.sh prints them, details
+# indented, and the closing line "N passed, N failed, N skipped".
+#
+# Cost: the handouts stay in OUT between runs and are updated in place, so
+# make rebuilds only what changed; the common core and the test support
+# code, the same in every handout, are compiled once for all of them
+# (OUT/shared/); a stage whose handout, solution and tools did not change
+# since all its checks last passed is not checked again ("cached"), unless
+# --no-cache.
+#
+# Options:
+#   --quick        skip the [full] checks, build and run only the lab's own
+#                  test programs (what make test runs)
+#   --full         every check (the default; make check-labs)
+#   --no-cache     check every stage, changed or not
+#   --out DIR      where the handouts go (default: build/labs)
+#   --jobs N       parallel make jobs (default: the number of processors)
+#   --timeout SEC  time limit of one test program (default 300; 0: none)
+#   --root DIR     the project (default: the one this script belongs to)
+#   --help
+# Exit status: 0 every check passed, 1 a check failed, 2 usage.
+set -eu
+
+PROG=check-labs.sh
+LAB_DIR=$(cd "$(dirname "$0")" && pwd)
+. "$LAB_DIR/lablib.sh"
+
+root=$(cd "$LAB_DIR/../.." && pwd)
+mode=full
+cache=1
+out=
+jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
+limit=300
+while [ $# -gt 0 ]; do
+    case $1 in
+        -h | --help) show_help "$0"; exit 0 ;;
+        --quick) mode=quick ;;
+        --full) mode=full ;;
+        --no-cache) cache=0 ;;
+        --out | --jobs | --timeout | --root)
+            [ $# -ge 2 ] || usage_error "$1 needs a value"
+            case $1 in
+                --out) out=$2 ;;
+                --jobs) jobs=$2 ;;
+                --timeout) limit=$2 ;;
+                --root) root=$(abs_dir "$2") ;;
+            esac
+            shift
+            ;;
+        --) shift; break ;;
+        -*) usage_error "unknown option: $1" ;;
+        *) break ;;
+    esac
+    shift
+done
+case $jobs in '' | *[!0-9]*) usage_error "--jobs needs a number, got '$jobs'" ;; esac
+case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
+[ -n "$out" ] || out=$root/build/labs
+mkdir -p "$out"
+out=$(abs_dir "$out")
+
+if [ $# -gt 0 ]; then
+    stages=
+    for a in "$@"; do stages="$stages $(resolve_stage "$root" "$a")"; done
+else
+    stages=$(stage_list "$root")
+fi
+
+passed=0
+failed=0
+skipped=0
+
+# result ok|FAIL|skip STAGE WHAT - one result line (the main loop counts them).
+result() {
+    printf '%-4s labs/%s: %s\n' "$1" "$2" "$3"
+}
+
+# Indented lines of detail (never taken for a result line).
+detail() {
+    sed -e 's/^/        /' "$@" | head -n 30
+}
+
+rel() {
+    echo "${1#"$root"/}"
+}
+
+# run_group DIR NN LOGDIR lab|earlier|all - run the handout's test programs
+# of one group: one detail line each on stderr; on stdout the numbers of
+# programs that passed and that failed, "P F".
+run_group() {
+    rg_dir=$1
+    rg_nn=$2
+    rg_logs=$3
+    rg_group=$4
+    rg_p=0
+    rg_f=0
+    mkdir -p "$rg_logs"
+    for rg_src in $(handout_tests "$rg_dir"); do
+        rg_from=$(test_from "$rg_src")
+        case $rg_group in
+            lab) [ "$rg_from" = "$rg_nn" ] || continue ;;
+            earlier) [ "$rg_from" != "$rg_nn" ] || continue ;;
+        esac
+        rg_name=$(basename "$rg_src" .c)
+        rg_res=$(run_handout_test "$rg_dir" "$rg_src" "$rg_logs/$rg_name.log" "$limit")
+        read -r rg_tp rg_tf rg_ts rg_status rg_note <<EOF
+$rg_res
+EOF
+        if [ "$rg_note" = - ]; then rg_note=; else rg_note=" ($rg_note)"; fi
+        printf '%s: %s passed, %s failed, %s skipped%s\n' \
+            "$rg_name" "$rg_tp" "$rg_tf" "$rg_ts" "$rg_note" >&2
+        if [ "$rg_tf" -gt 0 ]; then rg_f=$((rg_f + 1)); else rg_p=$((rg_p + 1)); fi
+    done
+    echo "$rg_p $rg_f"
+}
+
+# first_failure DIR NN LOGDIR - run the lab's tests one TEST() at a time,
+# in order, until one fails; print "PROGRAM/TEST" of that one, or nothing
+# when all pass.  (--quick: a broken handout's first test usually fails,
+# so this costs one test instead of the lab's whole suite.)
+first_failure() {
+    ff_dir=$1
+    mkdir -p "$3"
+    for ff_src in $(handout_tests "$ff_dir"); do
+        [ "$(test_from "$ff_src")" = "$2" ] || continue
+        ff_name=$(basename "$ff_src" .c)
+        for ff_test in $(test_names "$ff_src"); do
+            ff_res=$(run_handout_test "$ff_dir" "$ff_src" "$3/$ff_name.$ff_test.log" "$limit" "$ff_test")
+            read -r ff_p ff_f ff_rest <<EOF
+$ff_res
+EOF
+            if [ "$ff_f" -gt 0 ]; then
+                echo "$ff_name/$ff_test"
+                return 0
+            fi
+        done
+    done
+}
+
+# The common core and the test support code are the same in every handout:
+# their build directories point into one shared directory, named after a
+# checksum of their sources, so a change makes a fresh one.
+share_builds() {
+    sb_dir=$1
+    sb_key=$( (echo "${CC:-cc} ${CFLAGS:-}"
+        cd "$root" && find common tests -maxdepth 1 -type f | LC_ALL=C sort | xargs cksum) |
+        cksum | awk '{ print $1 }')
+    sb_shared=$out/shared/$sb_key
+    mkdir -p "$sb_shared/common" "$sb_shared/support" "$sb_dir/build/tests"
+    for sb_d in common tests/support; do
+        sb_link=$sb_dir/build/$sb_d
+        sb_target=$sb_shared/${sb_d#tests/}
+        if [ -L "$sb_link" ] && [ "$(cd "$sb_link" && pwd -P)" = "$(cd "$sb_target" && pwd -P)" ]; then
+            continue
+        fi
+        rm -rf "$sb_link"
+        ln -s "$sb_target" "$sb_link"
+    done
+    for sb_old in "$out"/shared/*; do
+        [ "$sb_old" = "$sb_shared" ] || rm -rf "$sb_old"
+    done
+}
+
+# The key of a stage's check: everything its outcome depends on.
+check_key() {
+    {
+        echo "$mode $limit ${CC:-cc} ${CFLAGS:-}"
+        ${CC:-cc} --version 2>/dev/null | head -n 1
+        (cd "$1" && find . -path ./build -prune -o -type f -print | LC_ALL=C sort | xargs cksum)
+        (cd "$root/stages/$2" && find . -type f | LC_ALL=C sort | xargs cksum)
+        (cd "$LAB_DIR" && find . -type f | LC_ALL=C sort | xargs cksum)
+    } | cksum | awk '{ print $1 "-" $2 }'
+}
+
+# The solution lines of the stage's LAB NN regions found in the handout.
+find_leaks() {
+    fl_stage=$1
+    fl_dir=$2
+    fl_tmp=$3
+    fl_nn=${fl_stage%%_*}
+    (cd "$root" && awk -v mode=inside -v lab="$fl_nn" -f "$LAB_DIR/markers.awk" \
+        stages/"$fl_stage"/*.[ch]) >"$fl_tmp/inside"
+    (cd "$root" && awk -v mode=outside -v lab="$fl_nn" -f "$LAB_DIR/markers.awk" \
+        stages/"$fl_stage"/*.[ch]) | cut -f 3- >"$fl_tmp/outside"
+    : >"$fl_tmp/known"
+    : >"$fl_tmp/targets"
+    (cd "$fl_dir" && find . -path ./build -prune -o -type f -print | sed 's|^\./||' | LC_ALL=C sort) |
+        while IFS= read -r fl_f; do
+            grep -Iq '' "$fl_dir/$fl_f" 2>/dev/null || continue
+            echo "$fl_f" >>"$fl_tmp/targets"
+            case $fl_f in
+                stages/* | LAB.md) ;;
+                *) echo "$fl_f" >>"$fl_tmp/known" ;;
+            esac
+        done
+    (cd "$fl_dir" && awk -f "$LAB_DIR/leaks.awk" pass=known "$fl_tmp/outside" $(cat "$fl_tmp/known") \
+        pass=solution "$fl_tmp/inside" pass=handout $(cat "$fl_tmp/targets"))
+}
+
+check_leaks() {
+    if find_leaks "$1" "$2" "$3" >"$3/leaks"; then
+        result ok "$1" "no-leaks: no solution line in the handout"
+    else
+        result FAIL "$1" "no-leaks: the handout holds lines of the solution"
+        detail "$3/leaks"
+    fi
+}
+
+# Copy the solution into the handout, run all its tests, put the handout back.
+check_solution() {
+    csl_stage=$1
+    csl_dir=$2
+    csl_logs=$3
+    cp "$root/stages/$csl_stage"/* "$csl_dir/stages/$csl_stage/"
+    if ! handout_build "$csl_dir" "$csl_logs/solution-build.log" all -j"$jobs"; then
+        result FAIL "$csl_stage" "solution: the solution does not build in the handout (log: $(rel "$csl_logs")/solution-build.log)"
+        build_errors "$csl_logs/solution-build.log" | detail
+    else
+        set -- $(run_group "$csl_dir" "${csl_stage%%_*}" "$csl_logs/solution" all 2>"$csl_logs/solution-tests")
+        if [ "$2" -eq 0 ]; then
+            result ok "$csl_stage" "solution: with the solution copied in, the handout's tests pass ($1 programs)"
+        else
+            result FAIL "$csl_stage" "solution: with the solution copied in, the handout's tests fail"
+            grep -v ' 0 failed' "$csl_logs/solution-tests" | detail
+        fi
+    fi
+    "$LAB_DIR/make-lab.sh" --quiet --root "$root" "$csl_stage" "$csl_dir" 2>/dev/null ||
+        warn "could not restore the handout in $csl_dir"
+}
+
+# Write a stage's handout; "ok" when that went without a warning.
+write_handout() {
+    wh_stage=$1
+    wh_dir=$out/${wh_stage%%_*}
+    wh_log=$out/logs/${wh_stage%%_*}/make-lab.log
+    mkdir -p "${wh_log%/*}"
+    if "$LAB_DIR/make-lab.sh" --quiet --root "$root" "$wh_stage" "$wh_dir" 2>"$wh_log"; then
+        share_builds "$wh_dir"
+        [ -s "$wh_log" ] && echo warned || echo ok
+    else
+        echo failed
+    fi
+}
+
+# check_stage STAGE STATUS - the checks of one stage whose handout was
+# written with STATUS (ok, warned, failed).
+check_stage() {
+    cs_stage=$1
+    cs_nn=${cs_stage%%_*}
+    cs_dir=$out/$cs_nn
+    cs_logs=$out/logs/$cs_nn
+    cs_n=0
+    if [ "$2" != failed ]; then
+        cs_n=$(cd "$cs_dir" && awk -v mode=regions -f "$LAB_DIR/markers.awk" stages/"$cs_stage"/*.[ch] |
+            awk -F '\t' -v nn="$cs_nn" '$4 == nn' | wc -l)
+    fi
+    cs_what="handout: $(rel "$cs_dir"), $((cs_n)) LAB $cs_nn region(s)"
+    case $2 in
+        ok) result ok "$cs_stage" "$cs_what, LAB.md from docs/stages/$cs_stage.md" ;;
+        warned)
+            result FAIL "$cs_stage" "$cs_what; make-lab.sh warns"
+            detail "$cs_logs/make-lab.log"
+            ;;
+        failed)
+            result FAIL "$cs_stage" "make-lab.sh failed"
+            detail "$cs_logs/make-lab.log"
+            for cs_w in build lab-fails earlier no-leaks solution; do
+                result skip "$cs_stage" "$cs_w: no handout"
+            done
+            return 0
+            ;;
+    esac
+
+    cs_which=all
+    [ "$mode" = quick ] && cs_which=lab
+    if handout_build "$cs_dir" "$cs_logs/build.log" "$cs_which" -j"$jobs" WERROR=1; then
+        build_warnings "$cs_logs/build.log" >"$cs_logs/warnings"
+        if [ -s "$cs_logs/warnings" ]; then
+            result FAIL "$cs_stage" "build: the handout builds with warnings (log: $(rel "$cs_logs")/build.log)"
+            detail "$cs_logs/warnings"
+        else
+            result ok "$cs_stage" "build: the handout builds with WERROR=1, no warning"
+        fi
+    else
+        result FAIL "$cs_stage" "build: the handout does not build with WERROR=1 (log: $(rel "$cs_logs")/build.log)"
+        build_errors "$cs_logs/build.log" | detail
+        result skip "$cs_stage" "lab-fails: the handout does not build"
+        result skip "$cs_stage" "earlier: the handout does not build"
+        check_leaks "$cs_stage" "$cs_dir" "$cs_logs"
+        result skip "$cs_stage" "solution: the handout does not build"
+        return 0
+    fi
+
+    cs_own=$(for cs_t in $(handout_tests "$cs_dir"); do
+        [ "$(test_from "$cs_t")" = "$cs_nn" ] && echo "$cs_t"; done; true)
+    if [ -z "$cs_own" ]; then
+        result FAIL "$cs_stage" "lab-fails: stage $cs_nn has no tests of its own (tests/stage/${cs_nn}_*.c)"
+    elif [ "$mode" = quick ]; then
+        cs_first=$(first_failure "$cs_dir" "$cs_nn" "$cs_logs/tests")
+        if [ -n "$cs_first" ]; then
+            result ok "$cs_stage" "lab-fails: the lab's tests fail in the handout, as they must (first: $cs_first)"
+        else
+            result FAIL "$cs_stage" "lab-fails: the lab's tests pass in the handout: a stub implements the feature, or the tests miss it"
+        fi
+    else
+        set -- $(run_group "$cs_dir" "$cs_nn" "$cs_logs/tests" lab 2>"$cs_logs/lab-tests")
+        if [ "$2" -gt 0 ]; then
+            result ok "$cs_stage" "lab-fails: the lab's tests fail in the handout, as they must"
+        else
+            result FAIL "$cs_stage" "lab-fails: the lab's tests pass in the handout: a stub implements the feature, or the tests miss it"
+        fi
+        detail "$cs_logs/lab-tests"
+    fi
+
+    if [ "$mode" = quick ]; then
+        result skip "$cs_stage" "earlier: --quick (make check-labs runs it)"
+    else
+        set -- $(run_group "$cs_dir" "$cs_nn" "$cs_logs/tests" earlier 2>"$cs_logs/earlier-tests")
+        if [ "$2" -eq 0 ]; then
+            result ok "$cs_stage" "earlier: the earlier stages' tests pass in the handout ($1 programs)"
+        else
+            result FAIL "$cs_stage" "earlier: earlier stages' tests fail in the handout: a stub breaks more than lab $cs_nn"
+            grep -v ' 0 failed' "$cs_logs/earlier-tests" | detail
+        fi
+    fi
+
+    check_leaks "$cs_stage" "$cs_dir" "$cs_logs"
+
+    if [ "$mode" = quick ]; then
+        result skip "$cs_stage" "solution: --quick (make check-labs runs it)"
+    else
+        check_solution "$cs_stage" "$cs_dir" "$cs_logs"
+    fi
+}
+
+# Every handout first: the shared builds must be newer than every copy of
+# their sources.
+mkdir -p "$out/logs" "$out/cache"
+statuses=
+for s in $stages; do
+    rm -rf "$out/logs/${s%%_*}"
+    statuses="$statuses $s:$(write_handout "$s")"
+done
+
+for entry in $statuses; do
+    s=${entry%%:*}
+    nn=${s%%_*}
+    key=
+    if [ "$cache" -eq 1 ] && [ "${entry#*:}" = ok ]; then
+        key=$(check_key "$out/$nn" "$s")
+        if [ -f "$out/cache/$nn.out" ] && [ "$(cat "$out/cache/$nn.key" 2>/dev/null)" = "$key" ]; then
+            sed 's/^\(ok   labs\/.*\)$/\1 (cached: unchanged since it passed)/' "$out/cache/$nn.out"
+            passed=$((passed + $(grep -c '^ok ' "$out/cache/$nn.out" || true)))
+            skipped=$((skipped + $(grep -c '^skip ' "$out/cache/$nn.out" || true)))
+            continue
+        fi
+    fi
+    rm -f "$out/cache/$nn.key" "$out/cache/$nn.out"
+    check_stage "$s" "${entry#*:}" | tee "$out/cache/$nn.out.tmp"
+    passed=$((passed + $(grep -c '^ok ' "$out/cache/$nn.out.tmp" || true)))
+    failed=$((failed + $(grep -c '^FAIL ' "$out/cache/$nn.out.tmp" || true)))
+    skipped=$((skipped + $(grep -c '^skip ' "$out/cache/$nn.out.tmp" || true)))
+    if [ -n "$key" ] && ! grep -q '^FAIL ' "$out/cache/$nn.out.tmp"; then
+        mv "$out/cache/$nn.out.tmp" "$out/cache/$nn.out"
+        echo "$key" >"$out/cache/$nn.key"
+    else
+        rm -f "$out/cache/$nn.out.tmp"
+    fi
+done
+echo "$passed passed, $failed failed, $skipped skipped"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,197 @@
+# lablib.sh - shell functions shared by the lab tools (tests/lab/*.sh).
+# Sourced, not run.  The caller sets PROG (its name for messages) and
+# LAB_DIR (this directory) first.  POSIX sh: no `local`, so each function's
+# variables carry its own prefix.
+
+die() {
+    printf '%s: error: %s\n' "$PROG" "$*" >&2
+    exit 1
+}
+
+warn() {
+    printf '%s: warning: %s\n' "$PROG" "$*" >&2
+}
+
+usage_error() {
+    printf '%s: %s\n' "$PROG" "$*" >&2
+    printf "Try '%s --help'.\n" "$PROG" >&2
+    exit 2
+}
+
+# show_help SCRIPT - print the script's header comment (its help).
+show_help() {
+    awk 'NR == 1 { next } /^#/ { sub(/^# ?/, ""); print; next } { exit }' "$1"
+}
+
+# abs_dir DIR - DIR as an absolute path (DIR must exist).
+abs_dir() {
+    (cd "$1" 2>/dev/null && pwd) || die "no such directory: $1"
+}
+
+# stage_list ROOT - the stage directories (NN_name), in order.
+stage_list() {
+    for sl_d in "$1"/stages/[0-9][0-9]_*; do
+        [ -d "$sl_d" ] && basename "$sl_d"
+    done
+    return 0
+}
+
+# resolve_stage ROOT ARG - the stage named by ARG (5, 05 or 05_bvh).
+resolve_stage() {
+    rs_arg=$2
+    case $rs_arg in
+        [0-9]) rs_arg=0$rs_arg ;;
+    esac
+    case $rs_arg in
+        [0-9][0-9]) ;;
+        [0-9][0-9]_*) rs_arg=${rs_arg%%_*} ;;
+        *) die "not a stage: '$2' (give its number, e.g. 05, or its name, e.g. 05_bvh)" ;;
+    esac
+    rs_found=
+    for rs_d in "$1"/stages/"$rs_arg"_*; do
+        [ -d "$rs_d" ] || continue
+        [ -z "$rs_found" ] || die "two stages numbered $rs_arg in $1/stages"
+        rs_found=$(basename "$rs_d")
+    done
+    [ -n "$rs_found" ] || die "no stage $rs_arg in stages/ (there are: $(stage_list "$1" | tr '\n' ' '))"
+    case $2 in
+        [0-9][0-9]_*) [ "$2" = "$rs_found" ] || die "no stage $2 (stage $rs_arg is $rs_found)" ;;
+    esac
+    echo "$rs_found"
+}
+
+# test_from FILE - the first stage a stage test applies to: 05 for
+# 05_bvh.c and for 05-06_speed.c (tests/select-tests.sh).
+test_from() {
+    tf_b=$(basename "$1")
+    tf_b=${tf_b%%_*}
+    echo "${tf_b%-*}"
+}
+
+# copy_files SRC DEST - copy SRC's regular files into DEST, recursively,
+# without hidden files and editor or patch leftovers.
+copy_files() {
+    mkdir -p "$2"
+    (cd "$1" && find . \( -name '.?*' -prune \) -o -type f ! -name '*~' ! -name '*.o' \
+        ! -name '*.orig' ! -name '*.rej' ! -name '*.swp' -print) |
+        while IFS= read -r cf_f; do
+            cf_f=${cf_f#./}
+            case $cf_f in
+                */*) mkdir -p "$2/${cf_f%/*}" ;;
+            esac
+            cp "$1/$cf_f" "$2/$cf_f"
+        done
+}
+
+# is_handout DIR - whether DIR holds a handout written by make-lab.sh.
+is_handout() {
+    [ -f "$1/Makefile" ] && head -n 1 "$1/Makefile" | grep -q '^# stagelight lab handout'
+}
+
+# handout_stage DIR - the stage directory name in a handout.
+handout_stage() {
+    set -- "$1"/stages/[0-9][0-9]_*
+    [ $# -eq 1 ] && [ -d "$1" ] || return 1
+    basename "$1"
+}
+
+# handout_tests DIR - the handout's stage test sources (tests/stage/*.c).
+handout_tests() {
+    for ht_f in "$1"/tests/stage/*.c; do
+        [ -f "$ht_f" ] && echo "$ht_f"
+    done
+    return 0
+}
+
+# The make the lab tools run inside handouts: a clean command line, so the
+# -j or variables of an enclosing make do not leak in, and the default
+# build variant (build/, whose paths the tools know), whatever REAL= or
+# SANITIZE= the environment holds.
+lab_make() {
+    MAKEFLAGS= MAKELEVEL= MFLAGS= ${MAKE:-make} --no-print-directory REAL=double SANITIZE=0 "$@"
+}
+
+# handout_build DIR LOG all|lab [VAR=value...] - build a handout's stage
+# and its test programs, all or only the lab's own (make -k: as many as
+# compile).  Output goes to LOG; the status is make's.
+handout_build() {
+    hb_dir=$1
+    hb_log=$2
+    hb_which=$3
+    shift 3
+    hb_stage=$(handout_stage "$hb_dir") || die "$hb_dir: no stage in stages/"
+    hb_progs=
+    for hb_src in $(handout_tests "$hb_dir"); do
+        if [ "$hb_which" = lab ] && [ "$(test_from "$hb_src")" != "${hb_stage%%_*}" ]; then
+            continue
+        fi
+        hb_progs="$hb_progs $hb_dir/build/tests/$hb_stage/$(basename "$hb_src" .c)"
+    done
+    hb_status=0
+    {
+        lab_make -C "$hb_dir" "$@" all &&
+            if [ -n "$hb_progs" ]; then
+                lab_make -k -C "$hb_dir/tests" "$@" STAGE="$hb_stage" $hb_progs
+            fi
+    } >"$hb_log" 2>&1 || hb_status=$?
+    return $hb_status
+}
+
+# build_warnings LOG - the compiler's and linker's warnings in a build log.
+build_warnings() {
+    grep -E 'warning:' "$1" | grep -Ev '^g?make(\[[0-9]+\])?: ' || true
+}
+
+# build_errors LOG - the compiler's and linker's errors and warnings.
+build_errors() {
+    grep -E '(error|warning):|undefined reference' "$1" | grep -Ev '^g?make(\[[0-9]+\])?: ' || true
+}
+
+# run_handout_test DIR SRC LOG TIMEOUT [TEST...] - run the test program built
+# from SRC (tests/stage/NAME.c), or only the named TEST()s of it, and print
+# "passed failed skipped status note".
+# A program that crashes, times out or prints no result line counts every
+# TEST() of its source as failed; one that prints a result line but exits
+# non-zero counts one more failure (as tests/run-tests.sh does).
+run_handout_test() {
+    rt_dir=$1
+    rt_src=$2
+    rt_log=$3
+    rt_limit=$4
+    rt_stage=$(handout_stage "$rt_dir")
+    rt_prog=$rt_dir/build/tests/$rt_stage/$(basename "$rt_src" .c)
+    shift 4
+    rt_count=$#
+    [ "$rt_count" -gt 0 ] || rt_count=$(grep -c '^TEST(' "$rt_src" || true)
+    if [ ! -x "$rt_prog" ]; then
+        echo "did not compile" >"$rt_log"
+        echo "0 $rt_count 0 - did-not-compile"
+        return 0
+    fi
+    rt_timeout=
+    if [ "$rt_limit" -gt 0 ] 2>/dev/null && command -v timeout >/dev/null 2>&1; then
+        rt_timeout="timeout $rt_limit"
+    fi
+    rt_status=0
+    (cd "$rt_dir/tests" &&
+        RENDER=$rt_dir/build/$rt_stage/render STAGE=$rt_stage ROOT=$rt_dir \
+            $rt_timeout "$rt_prog" "$@") >"$rt_log" 2>&1 </dev/null || rt_status=$?
+    rt_line=$(grep -E '^[0-9]+ passed, [0-9]+ failed' "$rt_log" | tail -n 1)
+    if [ -z "$rt_line" ]; then
+        rt_note=crashed
+        [ -n "$rt_timeout" ] && [ "$rt_status" -eq 124 ] && rt_note=timed-out
+        echo "0 $rt_count 0 $rt_status $rt_note"
+        return 0
+    fi
+    echo "$rt_line" | awk -v st="$rt_status" '{
+        p = $1; f = $3; s = ($5 == "" ? 0 : $5)
+        note = "-"
+        if (st != 0 && f == 0) { if (p > 0) p--; f = 1; note = "exit-" st }
+        print p, f, s, st, note
+    }'
+}
+
+# test_names SRC - the names of the TEST()s defined in a test source.
+test_names() {
+    sed -n 's/^TEST(\([A-Za-z_][A-Za-z0-9_]*\)).*/\1/p' "$1"
+}

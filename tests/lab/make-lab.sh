@@ -1,0 +1,261 @@
+#!/bin/sh
+# make-lab.sh - write the lab handout of one stage.
+#
+#   make-lab.sh [options] STAGE OUT          (make lab STAGE=05 OUT=path)
+#
+# STAGE is a stage number (05) or name (05_bvh).  OUT becomes a
+# self-contained, buildable copy of the project for that lab:
+#   stages/NN_name/  the stage, each LAB NN region replaced by its stub
+#                    (earlier labs' regions keep their code, without markers)
+#   common/          the common core
+#   tests/           the harness and the stage tests that apply to stage NN
+#                    (the autograder), reference images, test scenes
+#   scenes/          the scenes
+#   Makefile         make (build), make test (the autograder)
+#   LAB.md           the "Lab" section of docs/stages/NN_name.md, the places
+#                    to write code, and the tests
+# The marker format is in tests/lab/README.md.  OUT must not exist, be
+# empty, or hold an earlier handout, which is updated in place: files that
+# did not change keep their dates, so rebuilding it is quick.
+#
+# Options:
+#   --solution   keep the solution and all markers (an instructor's copy)
+#   --strict     warnings (no Lab section, no LAB NN region, a missing
+#                linked file) are errors
+#   --quiet      print nothing on success
+#   --root DIR   the project (default: the one this script belongs to)
+#   --help       this text
+# Exit status: 0 written, 1 error, 2 usage.
+set -eu
+
+PROG=make-lab.sh
+LAB_DIR=$(cd "$(dirname "$0")" && pwd)
+. "$LAB_DIR/lablib.sh"
+
+root=$(cd "$LAB_DIR/../.." && pwd)
+solution=0
+strict=0
+quiet=0
+while [ $# -gt 0 ]; do
+    case $1 in
+        -h | --help) show_help "$0"; exit 0 ;;
+        --solution) solution=1 ;;
+        --strict) strict=1 ;;
+        --quiet) quiet=1 ;;
+        --root)
+            [ $# -ge 2 ] || usage_error "--root needs a directory"
+            root=$(abs_dir "$2")
+            shift
+            ;;
+        --) shift; break ;;
+        -*) usage_error "unknown option: $1" ;;
+        *) break ;;
+    esac
+    shift
+done
+[ $# -eq 2 ] || usage_error "expected STAGE and OUT, got $# argument(s)"
+[ -n "$2" ] || usage_error "OUT is empty"
+
+stage=$(resolve_stage "$root" "$1")
+nn=${stage%%_*}
+out=$2
+page=docs/stages/$stage.md
+tmp=
+trap 'if [ -n "$tmp" ]; then rm -rf "$tmp"; fi' EXIT
+trap 'exit 1' HUP INT TERM
+
+# A warning, or under --strict an error.
+problem() {
+    if [ "$strict" -eq 1 ]; then die "$*"; fi
+    warn "$*"
+}
+
+check_out() {
+    if [ -e "$out" ] && [ ! -d "$out" ]; then
+        die "$out exists and is not a directory"
+    fi
+    if [ -d "$out" ] && [ -n "$(ls -A "$out")" ] && ! is_handout "$out"; then
+        die "$out is not empty and holds no handout; refusing to write into it"
+    fi
+    return 0
+}
+
+# The stage, stubbed: LAB NN regions become hint + TODO + stub.
+write_stage() {
+    ws_src=$root/stages/$stage
+    ws_dest=$tmp/stages/$stage
+    copy_files "$ws_src" "$ws_dest"
+    [ "$solution" -eq 1 ] && return 0
+    for ws_f in "$ws_dest"/*.c "$ws_dest"/*.h; do
+        [ -f "$ws_f" ] || continue
+        ws_name=$(basename "$ws_f")
+        (cd "$root" && awk -v mode=handout -v lab="$nn" -v stage="$nn" \
+            -v docref="docs/stages/$stage.md" -f "$LAB_DIR/markers.awk" "stages/$stage/$ws_name") >"$ws_f" ||
+            die "stages/$stage/$ws_name: bad LAB markers (see above)"
+    done
+}
+
+# The tests: the harness, support code and data, and the stage tests that
+# apply to this stage.  Left out: the unit tests of common/, the lab tools,
+# the trade-off measurements (tests/trade/) and the other stage tests.
+write_tests() {
+    wt_t=$root/tests
+    mkdir -p "$tmp/tests/stage"
+    for wt_f in "$wt_t"/*; do
+        wt_b=$(basename "$wt_f")
+        if [ -f "$wt_f" ]; then
+            case $wt_b in
+                *~ | *.o | *.orig | *.rej) ;;
+                *) cp "$wt_f" "$tmp/tests/$wt_b" ;;
+            esac
+        elif [ -d "$wt_f" ]; then
+            case $wt_b in
+                stage | common | lab | trade) ;;
+                *) copy_files "$wt_f" "$tmp/tests/$wt_b" ;;
+            esac
+        fi
+    done
+    for wt_f in $(cd "$wt_t" && sh ./select-tests.sh "$nn" stage/*.c); do
+        cp "$wt_t/$wt_f" "$tmp/tests/$wt_f"
+    done
+}
+
+write_makefile() {
+    sed -e "s/@STAGE@/$stage/g" -e "s/@NN@/$nn/g" "$LAB_DIR/handout.mk.in" >"$tmp/Makefile"
+    printf '/build/\n' >"$tmp/.gitignore"
+}
+
+# The Lab section of the stage's docs page, its linked files copied.
+lab_section() {
+    ls_assets=$tmp/.assets
+    : >"$ls_assets"
+    if [ ! -f "$root/$page" ]; then
+        problem "$page does not exist: LAB.md has no lab description"
+        return 0
+    fi
+    ls_status=0
+    (cd "$root" && awk -v dir="$(dirname "$page")" -v assets="$ls_assets" \
+        -f "$LAB_DIR/labdoc.awk" "$page") >"$tmp/.section" || ls_status=$?
+    if [ "$ls_status" -eq 3 ]; then
+        problem "$page has no '## Lab' section: LAB.md has no lab description"
+        return 0
+    fi
+    [ "$ls_status" -eq 0 ] || die "could not read $page"
+    cat "$tmp/.section"
+    echo
+    for ls_a in $(sort -u "$ls_assets"); do
+        if [ -f "$root/$ls_a" ]; then
+            mkdir -p "$tmp/$(dirname "$ls_a")"
+            cp "$root/$ls_a" "$tmp/$ls_a"
+        else
+            problem "$page links to $ls_a, which does not exist"
+        fi
+    done
+}
+
+# The page's first "# " heading, else the stage name.
+page_title() {
+    pt_t=
+    if [ -f "$root/$page" ]; then
+        pt_t=$(awk '/^# / { sub(/^# +/, ""); sub(/^[Ss]tage [0-9]+[:.] */, ""); sub(/^[0-9][0-9]_[A-Za-z0-9_]*[:.] */, ""); print; exit }' "$root/$page")
+    fi
+    echo "${pt_t:-$stage}"
+}
+
+# The places to write code, from the stubbed files.
+todo_list() {
+    (cd "$tmp" && awk -v mode=regions -f "$LAB_DIR/markers.awk" stages/"$stage"/*.[ch]) |
+        awk -F '\t' -v nn="$nn" '$4 == nn { printf "- `%s`, line %d: %s\n", $1, $2, $5 }'
+}
+
+test_list() {
+    tl_which=$1
+    tl_any=0
+    for tl_f in "$tmp"/tests/stage/*.c; do
+        [ -f "$tl_f" ] || continue
+        tl_from=$(test_from "$tl_f")
+        if { [ "$tl_which" = lab ] && [ "$tl_from" = "$nn" ]; } ||
+            { [ "$tl_which" = earlier ] && [ "$tl_from" != "$nn" ]; }; then
+            printf -- '- `tests/stage/%s`\n' "$(basename "$tl_f")"
+            tl_any=1
+        fi
+    done
+    [ "$tl_any" -eq 1 ] || echo "(none)"
+}
+
+write_labmd() {
+    wl_todo=$(todo_list)
+    if [ -z "$wl_todo" ] && [ "$solution" -eq 0 ]; then
+        problem "stages/$stage has no LAB $nn region: the handout is the solution"
+    fi
+    {
+        echo "# Lab $nn: $(page_title)"
+        echo
+        echo "<!-- Generated by stagelight's tests/lab/make-lab.sh from $page. -->"
+        echo
+        lab_section
+        echo "## Where to write your code"
+        echo
+        if [ "$solution" -eq 1 ]; then
+            echo "This is the instructor's copy: it holds the solution, marked"
+            echo "\`/* LAB $nn: ... */\` ... \`/* END LAB */\`."
+        else
+            echo "Each place is marked \`/* LAB $nn: ... */\` ... \`/* END LAB */\`; between"
+            echo "the markers is a stub that only keeps the program compiling."
+            echo
+            if [ -n "$wl_todo" ]; then echo "$wl_todo"; else echo "(none)"; fi
+        fi
+        echo
+        echo "## Building and testing"
+        echo
+        echo "    make          # builds build/$stage/render"
+        echo "    make test     # the tests; the last line is \"N passed, N failed, N skipped\""
+        echo
+        echo "The tests of this lab fail until you write it:"
+        echo
+        test_list lab
+        echo
+        echo "The other tests check earlier stages' features, which your copy already"
+        echo "has: they pass now and must still pass when you are done."
+        echo
+        test_list earlier
+    } >"$tmp/LAB.md"
+    rm -f "$tmp/.assets" "$tmp/.section"
+}
+
+# Make OUT's files equal to the fresh handout's, touching only those that
+# differ; OUT/build is left alone.
+sync_out() {
+    mkdir -p "$out"
+    (cd "$tmp" && find . -type f) | while IFS= read -r so_f; do
+        so_f=${so_f#./}
+        if ! cmp -s "$tmp/$so_f" "$out/$so_f"; then
+            mkdir -p "$(dirname "$out/$so_f")"
+            rm -f "$out/$so_f"
+            cp "$tmp/$so_f" "$out/$so_f"
+        fi
+    done
+    (cd "$out" && find . -path ./build -prune -o -type f -print) | while IFS= read -r so_f; do
+        so_f=${so_f#./}
+        [ -e "$tmp/$so_f" ] || rm -f "$out/$so_f"
+    done
+    (cd "$out" && find . -path ./build -prune -o -type d -empty -print) | sort -r |
+        while IFS= read -r so_d; do
+            [ "$so_d" = . ] || rmdir "$out/$so_d"
+        done
+}
+
+check_out
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/make-lab.XXXXXX")
+write_stage
+copy_files "$root/common" "$tmp/common"
+copy_files "$root/scenes" "$tmp/scenes"
+write_tests
+write_makefile
+write_labmd
+sync_out
+if [ "$quiet" -eq 0 ]; then
+    kind=handout
+    [ "$solution" -eq 1 ] && kind="solution copy"
+    echo "$PROG: wrote the $kind of lab $nn ($stage) to $out; see $out/LAB.md"
+fi

@@ -1,0 +1,458 @@
+#!/bin/sh
+# test-lab-tools.sh - tests of the lab tools themselves, on fixtures.
+#
+#   test-lab-tools.sh [--keep]
+#
+# markers.awk on fixtures/sample.c.in (golden files) and on one bad input
+# per error; labdoc.awk, leaks.awk and diffstat.awk on small inputs; then
+# make-lab.sh, make-diffs.sh, check-diffs.sh and make-branches.sh on a
+# miniature project written into a temporary directory (nothing is
+# compiled: check-labs.sh and grade.sh build real handouts, and run in
+# make test and make check-labs).  Prints one line per test and the closing
+# line "N passed, N failed, N skipped".  --keep keeps the temporary
+# directory and prints its name.
+# Exit status: 0 all passed, 1 a test failed, 2 usage.
+set -eu
+
+PROG=test-lab-tools.sh
+LAB_DIR=$(cd "$(dirname "$0")" && pwd)
+. "$LAB_DIR/lablib.sh"
+
+keep=0
+case ${1:-} in
+    -h | --help) show_help "$0"; exit 0 ;;
+    --keep) keep=1 ;;
+    '') ;;
+    *) usage_error "unknown argument: $1" ;;
+esac
+
+FIX=$LAB_DIR/fixtures
+T=$(mktemp -d "${TMPDIR:-/tmp}/test-lab-tools.XXXXXX")
+if [ "$keep" -eq 1 ]; then
+    echo "keeping $T"
+else
+    trap 'rm -rf "$T"' EXIT
+fi
+trap 'exit 1' HUP INT TERM
+
+passed=0
+failed=0
+ok() {
+    passed=$((passed + 1))
+    echo "ok   lab-tools/$1"
+}
+fail() {
+    failed=$((failed + 1))
+    echo "FAIL lab-tools/$1"
+    if [ $# -gt 1 ]; then
+        shift
+        printf '%s\n' "$@" | sed 's/^/        /' | head -n 20
+    fi
+}
+# check NAME COMMAND... - ok when the command succeeds.
+check() {
+    ck_name=$1
+    shift
+    if "$@" >"$T/out" 2>&1; then ok "$ck_name"; else fail "$ck_name" "$(cat "$T/out")"; fi
+}
+# same NAME EXPECTED-FILE ACTUAL-FILE
+same() {
+    if diff "$2" "$3" >"$T/diff" 2>&1; then ok "$1"; else fail "$1" "$(cat "$T/diff")"; fi
+}
+markers() {
+    awk -f "$LAB_DIR/markers.awk" "$@"
+}
+
+# --- markers.awk ---------------------------------------------------------
+test_markers() {
+    cd "$FIX"
+    markers -v mode=handout -v lab=02 -v stage=02 -v docref=docs/stages/02_b.md sample.c.in >"$T/h02" 2>&1 || true
+    same markers/handout-02 sample.handout-02.c "$T/h02"
+    markers -v mode=handout -v lab=01 -v stage=02 -v docref=docs/stages/01_a.md sample.c.in >"$T/h01" 2>&1 || true
+    same markers/handout-01 sample.handout-01.c "$T/h01"
+    markers -v mode=regions sample.c.in >"$T/regions" 2>&1 || true
+    same markers/regions sample.regions "$T/regions"
+    check markers/lint-ok markers -v mode=lint -v stage=02 sample.c.in
+    # inside + outside = every line but the marker comments, and the stub
+    markers -v mode=inside -v lab=02 sample.c.in | cut -f 3 >"$T/in"
+    if grep -q 'shadow_rays_of' "$T/in" && grep -q 'sin2_t(cos_i, eta);' "$T/in" &&
+        ! grep -q 'x + x' "$T/in"; then
+        ok markers/inside
+    else
+        fail markers/inside "$(cat "$T/in")"
+    fi
+    markers -v mode=outside -v lab=02 sample.c.in | cut -f 3 >"$T/outside"
+    if grep -q 'return x + x;' "$T/outside" && grep -q '^return true;$' "$T/outside" &&
+        ! grep -q 'shadow_rays_of' "$T/outside" && ! grep -q 'LAB [0-9]' "$T/outside"; then
+        ok markers/outside
+    else
+        fail markers/outside "$(cat "$T/outside")"
+    fi
+    cd "$T"
+}
+
+# bad NAME EXPECTED-MESSAGE - markers.awk lint on stdin must fail with it.
+bad() {
+    cat >"$T/bad.c"
+    bd_status=0
+    markers -v mode=lint -v stage=02 "$T/bad.c" >"$T/bad.out" 2>&1 || bd_status=$?
+    if [ "$bd_status" -eq 1 ] && grep -q "$2" "$T/bad.out"; then
+        ok "markers/error/$1"
+    else
+        fail "markers/error/$1" "exit $bd_status, expected '$2':" "$(cat "$T/bad.out")"
+    fi
+}
+
+test_marker_errors() {
+    bad end-without-open 'without an open LAB region' <<'EOF'
+int x;
+/* END LAB */
+EOF
+    bad region-not-closed 'never closed with /\* END LAB \*/' <<'EOF'
+/* LAB 02: hint */
+int x;
+EOF
+    bad comment-not-closed 'never closed with \*/' <<'EOF'
+/* LAB 02: hint
+ * stub: return 0;
+int x;
+EOF
+    bad nested 'LAB region inside LAB 02' <<'EOF'
+/* LAB 02: hint */
+/* LAB 02: again */
+int x;
+/* END LAB */
+EOF
+    bad label-above-stage 'a stage holds only its own and earlier labs' <<'EOF'
+/* LAB 03: from the future */
+int x;
+/* END LAB */
+EOF
+    bad one-digit-label 'malformed LAB marker' <<'EOF'
+/* LAB 2: hint */
+int x;
+/* END LAB */
+EOF
+    bad not-alone 'malformed LAB marker' <<'EOF'
+int y; /* LAB 02: hint */
+EOF
+    bad end-label-mismatch 'closes LAB 02' <<'EOF'
+/* LAB 02: hint */
+int x;
+/* END LAB 01 */
+EOF
+    bad empty-region 'empty LAB 02 region' <<'EOF'
+/* LAB 02: hint */
+
+/* END LAB */
+EOF
+    bad stub-on-first-line "'stub:' must begin a comment line" <<'EOF'
+/* LAB 02: hint stub: return 0; */
+int x;
+/* END LAB */
+EOF
+    bad no-leader "must start with ' \* '" <<'EOF'
+/* LAB 02: hint
+   stub: return 0; */
+int x;
+/* END LAB */
+EOF
+    bad no-hint 'needs a hint' <<'EOF'
+/* LAB 02: */
+int x;
+/* END LAB */
+EOF
+    bad text-after-close 'text after the \*/' <<'EOF'
+/* LAB 02: hint */ int y;
+int x;
+/* END LAB */
+EOF
+}
+
+# --- labdoc.awk, leaks.awk, diffstat.awk ----------------------------------
+test_labdoc() {
+    cat >"$T/page.md" <<'EOF'
+# Stage 02: b
+
+The lesson.
+
+## Lab
+
+### Goals
+
+See [stage 01](01_a.md#camera), ![the image](../images/ref.png "ref") and
+[the site](https://example.org/x.md).
+
+```sh
+## not a heading
+```
+
+## After the lab
+
+Not in the section.
+EOF
+    cat >"$T/labdoc.expected" <<'EOF'
+## Goals
+
+See stage 01 (stagelight's `docs/stages/01_a.md`), ![the image](docs/images/ref.png "ref") and
+[the site](https://example.org/x.md).
+
+```sh
+## not a heading
+```
+EOF
+    : >"$T/assets"
+    awk -v dir=docs/stages -v assets="$T/assets" -f "$LAB_DIR/labdoc.awk" "$T/page.md" >"$T/labdoc.out" 2>&1 || true
+    same labdoc/section "$T/labdoc.expected" "$T/labdoc.out"
+    echo docs/images/ref.png >"$T/assets.expected"
+    same labdoc/assets "$T/assets.expected" "$T/assets"
+    printf '# Title\n\n## Not lab\n' >"$T/nolab.md"
+    ld_status=0
+    awk -v dir=docs/stages -v assets="$T/assets" -f "$LAB_DIR/labdoc.awk" "$T/nolab.md" >/dev/null || ld_status=$?
+    if [ "$ld_status" -eq 3 ]; then ok labdoc/no-section; else fail labdoc/no-section "exit $ld_status, expected 3"; fi
+}
+
+test_leaks() {
+    printf 'int shared_line_of_both_kinds = 1;\n' >"$T/known.c"
+    printf 'f\t1\t    int shared_line_of_both_kinds = 1;\nf\t2\t    return !world_occluded(w, shadow, t_max, st);\nf\t3\t    return false;\n' >"$T/inside"
+    printf 'int shared_line_of_both_kinds = 1;\nreturn false;\n' >"$T/clean.c"
+    printf 'x\n  return   !world_occluded(w, shadow, t_max, st);\n' >"$T/leaky.c"
+    check leaks/clean awk -f "$LAB_DIR/leaks.awk" pass=known "$T/known.c" pass=solution "$T/inside" \
+        pass=handout "$T/clean.c"
+    lk_status=0
+    awk -f "$LAB_DIR/leaks.awk" pass=known "$T/known.c" pass=solution "$T/inside" \
+        pass=handout "$T/leaky.c" >"$T/leaks.out" || lk_status=$?
+    if [ "$lk_status" -eq 1 ] && grep -q 'leaky.c:2: return !world_occluded' "$T/leaks.out"; then
+        ok leaks/found
+    else
+        fail leaks/found "exit $lk_status" "$(cat "$T/leaks.out")"
+    fi
+}
+
+test_diffstat() {
+    mkdir -p "$T/ds/01_a" "$T/ds/02_b"
+    printf 'a\nb\nc\n' >"$T/ds/01_a/x.c"
+    printf 'a\n/* LAB 02: h */\nB\n/* END LAB */\nc\n' >"$T/ds/02_b/x.c"
+    printf 'new\n' >"$T/ds/02_b/y.c"
+    (cd "$T/ds" && git diff --no-index --no-prefix 01_a 02_b >"$T/ds.diff") || true
+    (cd "$T/ds" && markers -v mode=regions 02_b/x.c >"$T/ds.regions")
+    set -- $(awk -v lab=02 -f "$LAB_DIR/diffstat.awk" pass=regions "$T/ds.regions" pass=diff "$T/ds.diff")
+    # 2 files, 1 new, 0 deleted, 4 added (3 in x.c, 1 in y.c), 1 removed, 3 in the region
+    if [ "$*" = "2 1 0 4 1 3" ]; then ok diffstat/counts; else fail diffstat/counts "got: $*" "$(cat "$T/ds.diff")"; fi
+}
+
+# --- the scripts, on a miniature project ----------------------------------
+mini_project() {
+    M=$T/mini
+    mkdir -p "$M/stages/01_a" "$M/stages/02_b" "$M/common" "$M/tests/stage" "$M/tests/common" \
+        "$M/tests/reference" "$M/scenes" "$M/docs/stages" "$M/docs/images"
+    cp "$LAB_DIR/../select-tests.sh" "$M/tests/select-tests.sh"
+    printf 'SRCS = main.c\n' >"$M/stages/01_a/Makefile"
+    printf 'int main(void) { return 0; }\n' >"$M/stages/01_a/main.c"
+    printf 'SRCS = main.c\n' >"$M/stages/02_b/Makefile"
+    cat >"$M/stages/02_b/main.c" <<'EOF'
+static int
+answer(void)
+{
+    /* LAB 02: compute the answer (docs/stages/02_b.md#lab)
+     * stub: return 0; */
+    return six_times_seven_is_the_answer();
+    /* END LAB */
+}
+
+int main(void) { return answer(); }
+EOF
+    printf '/* common */\n' >"$M/common/x.h"
+    printf 'all:\n' >"$M/tests/Makefile"
+    printf '/* harness */\n' >"$M/tests/check.h"
+    for f in 01_a 02_b 01-01_only 02-03_range 03_future; do
+        printf 'TEST(one) {}\nTEST(two) {}\n' >"$M/tests/stage/$f.c"
+    done
+    printf 'int main(void) { return 0; }\n' >"$M/tests/common/test_x.c"
+    printf 'ref\n' >"$M/tests/reference/r.pfm"
+    printf 'camera\n' >"$M/scenes/s.scene"
+    printf 'PNG\n' >"$M/docs/images/ref.png"
+    printf '# Stage 01: a\n\nAll of it: [01_a.diff](../diffs/01_a.diff).\n' >"$M/docs/stages/01_a.md"
+    cat >"$M/docs/stages/02_b.md" <<'EOF'
+# Stage 02: the answer
+
+Diff: [02_b.diff](../diffs/02_b.diff).
+
+## Lab
+
+Compute the answer. ![reference](../images/ref.png)
+
+## More
+EOF
+    cat >"$M/README.md" <<'EOF'
+| stage | the idea |
+|---|---|
+| `01_a` | nothing yet |
+| `02_b` | the answer |
+EOF
+}
+
+test_make_lab() {
+    H=$T/handout
+    check make-lab/writes "$LAB_DIR/make-lab.sh" --strict --quiet --root "$M" 02 "$H"
+    (cd "$H" && find . -type f | sed 's|^\./||' | LC_ALL=C sort) >"$T/files"
+    cat >"$T/files.expected" <<'EOF'
+.gitignore
+LAB.md
+Makefile
+common/x.h
+docs/images/ref.png
+scenes/s.scene
+stages/02_b/Makefile
+stages/02_b/main.c
+tests/Makefile
+tests/check.h
+tests/reference/r.pfm
+tests/select-tests.sh
+tests/stage/01_a.c
+tests/stage/02-03_range.c
+tests/stage/02_b.c
+EOF
+    same make-lab/files "$T/files.expected" "$T/files"
+    if grep -q '^    return 0;$' "$H/stages/02_b/main.c" && ! grep -q six_times "$H/stages/02_b/main.c" &&
+        grep -q 'LAB 02: compute the answer (LAB.md)' "$H/stages/02_b/main.c"; then
+        ok make-lab/stubbed
+    else
+        fail make-lab/stubbed "$(cat "$H/stages/02_b/main.c")"
+    fi
+    if grep -q '^# Lab 02: the answer$' "$H/LAB.md" && grep -q '^Compute the answer' "$H/LAB.md" &&
+        grep -q '](docs/images/ref.png)' "$H/LAB.md" &&
+        grep -q '`stages/02_b/main.c`, line 4: compute the answer (LAB.md)' "$H/LAB.md" &&
+        grep -q '`tests/stage/02-03_range.c`' "$H/LAB.md" && ! grep -q '^## More' "$H/LAB.md"; then
+        ok make-lab/lab-md
+    else
+        fail make-lab/lab-md "$(cat "$H/LAB.md")"
+    fi
+    if head -n 1 "$H/Makefile" | grep -q '^# stagelight lab handout: lab 02 (02_b)'; then
+        ok make-lab/makefile
+    else
+        fail make-lab/makefile "$(head -n 3 "$H/Makefile")"
+    fi
+    # Again: unchanged files keep their dates; a changed one is replaced.
+    mkdir -p "$H/build/x"
+    touch "$H/build/x/keep"
+    sleep 1
+    touch "$T/stamp"
+    sleep 1
+    printf '/* common, changed */\n' >"$M/common/x.h"
+    "$LAB_DIR/make-lab.sh" --quiet --root "$M" 02_b "$H" >/dev/null 2>&1 || true
+    newer=$(cd "$H" && find . -type f -newer "$T/stamp" | sed 's|^\./||')
+    if [ "$newer" = common/x.h ] && [ -f "$H/build/x/keep" ]; then
+        ok make-lab/update-in-place
+    else
+        fail make-lab/update-in-place "newer files: $newer"
+    fi
+    check make-lab/solution "$LAB_DIR/make-lab.sh" --solution --quiet --root "$M" 02 "$T/solution"
+    if grep -q six_times "$T/solution/stages/02_b/main.c"; then ok make-lab/solution-kept; else fail make-lab/solution-kept; fi
+    # Errors: exit 1 with a message; usage: exit 2.
+    mkdir -p "$T/notempty"
+    touch "$T/notempty/precious"
+    expect_exit make-lab/refuses-other-dir 1 'holds no handout' "$LAB_DIR/make-lab.sh" --root "$M" 02 "$T/notempty"
+    expect_exit make-lab/unknown-stage 1 'no stage 09' "$LAB_DIR/make-lab.sh" --root "$M" 09 "$T/h9"
+    expect_exit make-lab/usage 2 'expected STAGE and OUT' "$LAB_DIR/make-lab.sh" --root "$M" 02
+    expect_exit make-lab/strict-no-region 1 'no LAB 01 region' "$LAB_DIR/make-lab.sh" --strict --root "$M" 01 "$T/h1"
+}
+
+# expect_exit NAME STATUS MESSAGE COMMAND...
+expect_exit() {
+    ee_name=$1
+    ee_want=$2
+    ee_msg=$3
+    shift 3
+    ee_status=0
+    "$@" >"$T/ee.out" 2>&1 || ee_status=$?
+    if [ "$ee_status" -eq "$ee_want" ] && grep -q "$ee_msg" "$T/ee.out"; then
+        ok "$ee_name"
+    else
+        fail "$ee_name" "exit $ee_status (expected $ee_want), expected '$ee_msg':" "$(cat "$T/ee.out")"
+    fi
+}
+
+test_diffs() {
+    check make-diffs/writes "$LAB_DIR/make-diffs.sh" --quiet --root "$M"
+    if [ -f "$M/docs/diffs/02_b.diff" ] && grep -q '^+++ 02_b/main.c$' "$M/docs/diffs/02_b.diff" &&
+        ! grep -q '^index ' "$M/docs/diffs/02_b.diff"; then
+        ok make-diffs/diff
+    else
+        fail make-diffs/diff "$(cat "$M/docs/diffs/02_b.diff" 2>&1)"
+    fi
+    if grep -q '^| \[02_b\](stages/02_b.md) | 01_a | \[02_b.diff\](diffs/02_b.diff) | 1 | 10 | 1 | 4 |$' "$M/docs/README.md" &&
+        grep -q '^| \[01_a\](stages/01_a.md) | (none) | \[01_a.diff\](diffs/01_a.diff) | 2 (2 new) | 2 | 0 | 0 |$' "$M/docs/README.md"; then
+        ok make-diffs/table
+    else
+        fail make-diffs/table "$(cat "$M/docs/README.md")"
+    fi
+    cp "$M/docs/diffs/02_b.diff" "$T/first.diff"
+    cp "$M/docs/README.md" "$T/first.md"
+    "$LAB_DIR/make-diffs.sh" --quiet --root "$M" >/dev/null 2>&1 || true
+    if cmp -s "$T/first.diff" "$M/docs/diffs/02_b.diff" && cmp -s "$T/first.md" "$M/docs/README.md"; then
+        ok make-diffs/reproducible
+    else
+        fail make-diffs/reproducible
+    fi
+    check check-diffs/current "$LAB_DIR/check-diffs.sh" --root "$M"
+    if tail -n 1 "$T/out" | grep -q '^[0-9]* passed, 0 failed, 0 skipped$'; then
+        ok check-diffs/closing-line
+    else
+        fail check-diffs/closing-line "$(tail -n 1 "$T/out")"
+    fi
+    printf '/* more */\n' >>"$M/stages/02_b/main.c"
+    expect_exit check-diffs/stale 1 'FAIL diffs/02_b.diff: stale' "$LAB_DIR/check-diffs.sh" --root "$M"
+    "$LAB_DIR/make-diffs.sh" --quiet --root "$M" >/dev/null 2>&1 || true
+    check check-diffs/fixed "$LAB_DIR/check-diffs.sh" --root "$M"
+}
+
+test_branches() {
+    B=$T/branches
+    check make-branches/writes "$LAB_DIR/make-branches.sh" --root "$M" "$B"
+    if [ "$(git -C "$B" tag | tr '\n' ' ')" = "stage-01 stage-02 " ] &&
+        git -C "$B" rev-parse -q --verify feature/02_b >/dev/null &&
+        [ "$(git -C "$B" rev-list --count main)" = 2 ] &&
+        [ "$(git -C "$B" log -1 --format=%s stage-02)" = "Stage 02_b: the answer" ]; then
+        ok make-branches/tags
+    else
+        fail make-branches/tags "$(git -C "$B" log --oneline --decorate 2>&1)"
+    fi
+    git -C "$B" diff stage-01 stage-02 --numstat >"$T/numstat"
+    # 1 file: 10 lines of 02_b's main.c and the line test_diffs added, for 1
+    if [ "$(awk '{ a += $1; r += $2; n++ } END { print n, a, r }' "$T/numstat")" = "1 11 1" ]; then
+        ok make-branches/diff
+    else
+        fail make-branches/diff "$(cat "$T/numstat")"
+    fi
+    expect_exit make-branches/refuses 1 'earlier export' "$LAB_DIR/make-branches.sh" --root "$M" "$B"
+    check make-branches/force "$LAB_DIR/make-branches.sh" --force --root "$M" "$B"
+}
+
+test_help() {
+    for hp_s in make-lab grade make-diffs check-diffs check-labs make-branches test-lab-tools; do
+        if "$LAB_DIR/$hp_s.sh" --help 2>&1 | head -n 1 | grep -q "^$hp_s.sh - "; then
+            ok "help/$hp_s"
+        else
+            fail "help/$hp_s" "$("$LAB_DIR/$hp_s.sh" --help 2>&1 | head -n 3)"
+        fi
+    done
+}
+
+test_markers
+cd "$T"
+test_marker_errors
+test_labdoc
+test_leaks
+if command -v git >/dev/null 2>&1; then
+    test_diffstat
+fi
+mini_project
+test_make_lab
+if command -v git >/dev/null 2>&1; then
+    test_diffs
+    test_branches
+fi
+test_help
+echo "$passed passed, $failed failed, 0 skipped"
+[ "$failed" -eq 0 ]
