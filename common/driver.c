@@ -14,6 +14,7 @@
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <time.h>
 
 #define TILE_SIZE 16
 
@@ -219,6 +220,7 @@ render_image(
     }
     pthread_mutex_init(&ps.draw_lock, NULL);
     ps.start = clock_seconds();
+    clock_t cpu_start = clock();
     bool thread_error = false;
     for (ps.pass = 0; ok && ps.pass < job->passes && !stop_requested; ps.pass++) {
         bool over_time = job->time_limit > 0 && clock_seconds() - ps.start >= job->time_limit;
@@ -242,6 +244,7 @@ render_image(
         write_mean(sum, bad, result->passes_done, out, result);
         result->interrupted = stop_requested != 0;
         result->seconds = clock_seconds() - ps.start;
+        result->cpu_seconds = (double)(clock() - cpu_start) / CLOCKS_PER_SEC;
         for (int i = 0; i < job->threads; i++) {
             stats_add(&result->counts, &workers[i].counts);
         }

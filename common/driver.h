@@ -41,7 +41,8 @@ struct render_result {
     bool interrupted; /* stopped early by render_request_stop() */
     uint64_t nan_pixels; /* pixels with a NaN or Inf estimate in any pass */
     struct stats counts; /* summed over threads */
-    double seconds;
+    double seconds;      /* wall-clock time */
+    double cpu_seconds;  /* processor time of all threads (steadier on a busy machine) */
 };
 
 /* Render into out (allocated here).  Returns false only when memory or

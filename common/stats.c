@@ -55,11 +55,12 @@ report_print(FILE *f, const struct report *r)
         r->threads == 1 ? "" : "s");
     fprintf(
         f,
-        "  time     %.3f s total: load %.3f s, build %.3f s, render %.3f s\n",
+        "  time     %.3f s total: load %.3f s, build %.3f s, render %.3f s (%.3f s CPU)\n",
         r->seconds_total,
         r->seconds_load,
         r->seconds_build,
-        r->seconds_render);
+        r->seconds_render,
+        r->seconds_render_cpu);
     fprintf(
         f,
         "  rays     %.4g camera, %.4g shadow, %.4g secondary: %.3f Mrays/s\n",
@@ -138,6 +139,7 @@ write_json_body(FILE *f, const struct report *r)
     json_real(f, "seconds_load", r->seconds_load);
     json_real(f, "seconds_build", r->seconds_build);
     json_real(f, "seconds_render", r->seconds_render);
+    json_real(f, "seconds_render_cpu", r->seconds_render_cpu);
     json_u64(f, "rays_camera", c->rays_camera);
     json_u64(f, "rays_shadow", c->rays_shadow);
     json_u64(f, "rays_secondary", c->rays_secondary);

@@ -52,6 +52,7 @@ struct report {
     int width, height, spp, threads;
     uint64_t seed;
     double seconds_total, seconds_load, seconds_build, seconds_render;
+    double seconds_render_cpu; /* processor time of the render, all threads */
     struct stats counts;
     const char *extra_names[STATS_MAX_EXTRA]; /* names of the stage's counters; NULL: unused */
     uint64_t nan_pixels; /* pixels that came out NaN or Inf before the guard */

@@ -123,6 +123,7 @@ fill_report(
     rep->threads = job->threads;
     rep->seed = opt->seed;
     rep->seconds_render = result->seconds;
+    rep->seconds_render_cpu = result->cpu_seconds;
     rep->counts = result->counts;
     rep->nan_pixels = result->nan_pixels;
     rep->extra_names[STAT_PENUMBRA] = "penumbra_pixels";
