@@ -61,6 +61,10 @@ demo: all
 	done
 	@echo "wrote out/*.png"
 
+# The lessons' pictures (docs/images/), rendered by the stages.
+docs-images: all
+	@docs/make-images.sh
+
 # Coursework: lab handouts, grading, stage diffs (tests/lab/README.md).
 lab:
 	@if [ -z "$(STAGE)" ] || [ -z "$(OUT)" ]; then echo "usage: make lab STAGE=05 OUT=path [SOLUTION=1]" >&2; exit 2; fi
@@ -83,4 +87,4 @@ check-labs: all
 clean:
 	rm -rf build
 
-.PHONY: all common test sanitize config demo clean lab grade diffs branches check-labs $(STAGES)
+.PHONY: all common test sanitize config demo docs-images clean lab grade diffs branches check-labs $(STAGES)
