@@ -91,7 +91,9 @@ intersect_sphere(const struct sphere *sphere, ray r, real t_max, real *t)
  * Moller-Trumbore ("Fast, Minimum Storage Ray/Triangle Intersection", 1997):
  * solve o + t d = p0 + u e1 + v e2 by Cramer's rule.  A parallelogram is the
  * same system with u and v each in [0, 1] instead of u, v >= 0, u + v <= 1.
- * Returns false for rays parallel to the plane (det = 0).
+ * Returns false for rays parallel to the plane (det = 0), and as soon as u
+ * leaves [0, 1] or v goes below 0, which rules out both shapes: most rays
+ * miss most primitives, and they need not pay for t.
  */
 static bool
 solve_planar(vec3 p0, vec3 e1, vec3 e2, ray r, real *t, real *u, real *v)
@@ -114,8 +116,14 @@ solve_planar(vec3 p0, vec3 e1, vec3 e2, ray r, real *t, real *u, real *v)
     real inv_det = 1 / det;
     vec3 tvec = vec3_sub(r.o, p0);
     *u = vec3_dot(tvec, pvec) * inv_det;
+    if (!(*u >= 0 && *u <= 1)) {
+        return false;
+    }
     vec3 qvec = vec3_cross(tvec, e1);
     *v = vec3_dot(r.d, qvec) * inv_det;
+    if (!(*v >= 0)) {
+        return false;
+    }
     *t = vec3_dot(e2, qvec) * inv_det;
     return true;
     /* END LAB */
