@@ -61,6 +61,10 @@ demo: all
 	done
 	@echo "wrote out/*.png"
 
+# Speed: BVH build and trace rates, against brute force and Embree (tests/bench).
+bench: all
+	@$(MAKE) --no-print-directory -C tests/bench run
+
 # The lessons' pictures (docs/images/), rendered by the stages.
 docs-images: all
 	@docs/make-images.sh
@@ -87,4 +91,4 @@ check-labs: all
 clean:
 	rm -rf build
 
-.PHONY: all common test sanitize config demo docs-images clean lab grade diffs branches check-labs $(STAGES)
+.PHONY: all common test sanitize config demo bench docs-images clean lab grade diffs branches check-labs $(STAGES)

@@ -2,25 +2,29 @@
  * bvh.c - the median-split bounding volume hierarchy: build and traversal.
  *
  * Build (bvh_build): each primitive is reduced to the centre of its bounding
- * box; a node's primitives are split at the median centroid along the axis
- * where the centroids spread most, found by selection (Hoare's FIND), not by
- * sorting: O(n) per level, O(n log n) in all.  Splitting by count needs no
- * special case: coincident centroids are split anyway, so every leaf holds
- * at most BVH_MAX_LEAF primitives and the depth is ceil(log2(n / leaf)) + 1.
- * (This is not the surface area heuristic of pbrt or Embree, which cut where
- * the expected cost is lowest and trace faster; see docs/stages/05_bvh.md.)
+ * box; a node's primitives are split in two halves of equal count at the
+ * median centroid along the axis where the centroids spread most.  The
+ * median is found by selection (Hoare's FIND), not by sorting: O(n) per
+ * level, O(n log n) in all.  Splitting by count needs no special case when
+ * centroids coincide: they are split anyway, so every leaf holds at most
+ * BVH_MAX_LEAF primitives and the tree has about log2(n) levels.  (This is
+ * not the surface area heuristic of pbrt or Embree, which cuts where the
+ * expected cost of tracing is lowest: slower to build, faster to trace.)
  *
- * Traversal (bvh_intersect, bvh_occluded): an explicit stack, the child on
- * the ray's side of the split visited first, the ray-box slab test of Kay
- * and Kajiya ("Ray Tracing Complex Scenes", SIGGRAPH 1986) with the IEEE
- * infinity handling of Williams et al. ("An Efficient and Robust Ray-Box
- * Intersection Algorithm", JGT 10(1), 2005), and the primitives tested with
- * the same functions and inputs as the brute-force loop of world_intersect,
- * so the answer is the same bit for bit.
+ * Traversal (bvh_intersect, bvh_occluded): an explicit stack; at each node
+ * both children's boxes are tested, the one on the ray's side of the split
+ * plane visited first and the other pushed; the ray-box test is Kay and
+ * Kajiya's slabs ("Ray Tracing Complex Scenes", SIGGRAPH 1986) with the
+ * precomputed reciprocal direction and sign of Williams et al. ("An
+ * Efficient and Robust Ray-Box Intersection Algorithm", JGT 10(1), 2005).
+ * The primitives are tested with the same functions and the same numbers as
+ * the brute-force loop of world_intersect, so the answer is the same bit for
+ * bit.
  */
 #include "bvh.h"
 
 #include <float.h>
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -31,19 +35,22 @@ static_assert(BVH_MAX_DEPTH >= 33, "an int primitive count needs up to 32 levels
 
 /*
  * Boxes are widened by this many REAL_EPSILONs of the scene's size (its
- * largest coordinate).  Rounding makes a computed hit lie off the exact
- * surface, and a computed slab distance off the exact box, by a few
- * epsilons of the distances involved; a box that only just held its
- * primitive could then be missed by a ray that the primitive test reports
- * as a hit, and the BVH would disagree with brute force.  256 epsilons cover
- * rays starting within ~50 scene sizes that are not nearly parallel to the
- * surface they hit, at a cost in box size (2^-44 of the scene in double,
- * 2^-15 in float) that no traversal notices.
+ * largest coordinate).  Rounding puts a computed hit off the exact surface,
+ * and a computed slab distance off the exact box, by a few epsilons of the
+ * distances involved; a box that only just held its primitive could then be
+ * missed by a ray that the primitive test reports as a hit, and the BVH
+ * would disagree with brute force.  256 epsilons cover rays starting within
+ * ~50 scene sizes that are not nearly parallel to the surface they hit, for
+ * boxes larger by 2^-44 of the scene in double, 2^-15 in float: no
+ * traversal notices.
  */
 #define MARGIN_EPSILONS 256
 
 /* Ranges at most this long are finished by insertion sort. */
 #define SELECT_SMALL 16
+
+/* "No node": the traversal's answer when the ray misses both children. */
+#define NO_NODE UINT32_MAX
 
 /* An axis-aligned box in the working precision. */
 struct box {
@@ -57,11 +64,16 @@ struct build_ref {
     int prim;
 };
 
-struct builder {
-    struct bvh *bvh;
-    struct build_ref *refs; /* in leaf order once the build is done */
-};
-
+/* LAB 05: build the tree: centroids, the widest axis, the median split, leaves of
+ * at most BVH_MAX_LEAF primitives, boxes rounded outward (docs/stages/05_bvh.md#lab)
+ * stub: bool
+ * bvh_build(struct bvh *bvh, const struct world *w, struct diag *err)
+ * {
+ *     (void)w;
+ *     (void)err;
+ *     *bvh = (struct bvh){.nodes = NULL};
+ *     return true;
+ * } */
 /* --- primitive bounds ------------------------------------------------------ */
 
 static struct box
@@ -75,14 +87,12 @@ box_empty(void)
 static struct box
 box_add_point(struct box b, vec3 p)
 {
-    b.lo = (vec3){
-        p.x < b.lo.x ? p.x : b.lo.x,
-        p.y < b.lo.y ? p.y : b.lo.y,
-        p.z < b.lo.z ? p.z : b.lo.z};
-    b.hi = (vec3){
-        p.x > b.hi.x ? p.x : b.hi.x,
-        p.y > b.hi.y ? p.y : b.hi.y,
-        p.z > b.hi.z ? p.z : b.hi.z};
+    b.lo.x = p.x < b.lo.x ? p.x : b.lo.x;
+    b.lo.y = p.y < b.lo.y ? p.y : b.lo.y;
+    b.lo.z = p.z < b.lo.z ? p.z : b.lo.z;
+    b.hi.x = p.x > b.hi.x ? p.x : b.hi.x;
+    b.hi.y = p.y > b.hi.y ? p.y : b.hi.y;
+    b.hi.z = p.z > b.hi.z ? p.z : b.hi.z;
     return b;
 }
 
@@ -132,8 +142,8 @@ prim_bounds(const struct world *w, int prim)
     return parallelogram_bounds(light->corner, light->edge1, light->edge2);
 }
 
-/* The largest float <= x: a box stored as float still contains the
- * real-valued one. */
+/* The largest float <= x (-infinity for NaN), so that a box stored in
+ * float still contains the real-valued one. */
 static float
 float_below(real x)
 {
@@ -156,9 +166,9 @@ float_above(real x)
 
 /* --- the median split ----------------------------------------------------- */
 
-/* Whole 16-byte copies: with plain assignments the compiler copies a record
- * field by field, and the partition's next read of it, 16 bytes at once,
- * then waits for the pieces to reach memory (a failed store forwarding). */
+/* Whole 16-byte copies: assigned field by field, a record that the
+ * partition reads back 16 bytes at once would wait for its pieces to reach
+ * memory (a failed store forwarding: it halved the build's speed). */
 static void
 swap_refs(struct build_ref *a, struct build_ref *b)
 {
@@ -190,8 +200,8 @@ median_of_three(struct build_ref *refs, int lo, int hi, int axis)
  * Move the refs of refs[lo, hi] whose key is below the pivot (or equal to
  * it, when or_equal) to the front; returns where the others start.  Lomuto's
  * partition written without a branch on the key: every element is swapped
- * and the boundary moves by 0 or 1, because on random keys a branch would be
- * mispredicted half the time and cost more than the whole loop body.
+ * and the boundary moves by 0 or 1.  On random keys a branch would be
+ * mispredicted half the time, which costs more than the whole loop body.
  */
 static int
 partition(struct build_ref *refs, int lo, int hi, int axis, float pivot, bool or_equal)
@@ -224,9 +234,9 @@ insertion_sort(struct build_ref *refs, int lo, int hi, int axis)
  * centroid[axis] would put there, none before it greater and none after it
  * smaller: quickselect (Hoare's FIND, CACM 4(7), 1961), expected O(n).  Each
  * round splits the range into keys below the pivot, equal to it and above it
- * (the second pass only when k is not below), and keeps the part holding k;
- * the equal part is never empty, so every round shrinks the range, even
- * when all keys are equal (all centroids coincide).
+ * (the second pass only when k is not below), and keeps the part holding k.
+ * The equal part is never empty, so every round shrinks the range, even
+ * when all the keys are equal (all centroids coincide).
  */
 static void
 split_median(struct build_ref *refs, int n, int k, int axis)
@@ -272,31 +282,9 @@ widest_centroid_axis(const struct build_ref *refs, int n)
 
 /* --- building ------------------------------------------------------------- */
 
-/* Lay out the subtree over refs[begin, end) as the next nodes, depth first,
- * leaving the boxes for set_boxes; returns its root's index.  Recursion is
- * as deep as the tree: ~log2(n). */
-static uint32_t
-build_subtree(struct builder *b, int begin, int end, int depth)
-{
-    struct bvh *bvh = b->bvh;
-    uint32_t id = (uint32_t)bvh->n_nodes++;
-    bvh->depth = depth > bvh->depth ? depth : bvh->depth;
-    if (end - begin <= BVH_MAX_LEAF) {
-        bvh->nodes[id] =
-            (struct bvh_node){.index = (uint32_t)begin, .count = (uint16_t)(end - begin)};
-        return id;
-    }
-    int axis = widest_centroid_axis(b->refs + begin, end - begin);
-    int mid = begin + (end - begin) / 2;
-    split_median(b->refs + begin, end - begin, mid - begin, axis);
-    build_subtree(b, begin, mid, depth + 1); /* the first child: node id + 1 */
-    uint32_t second = build_subtree(b, mid, end, depth + 1);
-    bvh->nodes[id] = (struct bvh_node){.index = second, .axis = (uint8_t)axis};
-    return id;
-}
-
 /* Every primitive's centroid, in numbering order; returns the box around
- * all primitives. */
+ * all primitives.  (float_below turns the NaN centre of an infinite box
+ * into -infinity: every key compares.) */
 static struct box
 make_refs(const struct world *w, struct build_ref *refs)
 {
@@ -311,9 +299,35 @@ make_refs(const struct world *w, struct build_ref *refs)
     return all;
 }
 
-/* Primitive numbers in leaf order, and the triangles' corners next to them.
- * One pass in slot order: the reads are scattered over the scene's arrays,
- * but independent, so the processor overlaps their cache misses. */
+/*
+ * Lay out the subtree over refs[begin, end) as the next nodes of bvh, depth
+ * first, and return its root's index.  Only the topology: set_boxes fills
+ * in the boxes afterwards.  The recursion is as deep as the tree: the count
+ * halves at each level.
+ */
+static uint32_t
+build_subtree(struct bvh *bvh, struct build_ref *refs, int begin, int end, int depth)
+{
+    uint32_t id = (uint32_t)bvh->n_nodes++;
+    bvh->depth = depth > bvh->depth ? depth : bvh->depth;
+    if (end - begin <= BVH_MAX_LEAF) {
+        uint16_t count = (uint16_t)(end - begin);
+        bvh->nodes[id] = (struct bvh_node){.index = (uint32_t)begin, .count = count};
+        return id;
+    }
+    int axis = widest_centroid_axis(refs + begin, end - begin);
+    int mid = begin + (end - begin) / 2;
+    split_median(refs + begin, end - begin, mid - begin, axis);
+    build_subtree(bvh, refs, begin, mid, depth + 1); /* the first child: node id + 1 */
+    uint32_t second = build_subtree(bvh, refs, mid, end, depth + 1);
+    bvh->nodes[id] = (struct bvh_node){.index = second, .axis = (uint8_t)axis};
+    return id;
+}
+
+/* Primitive numbers in leaf order, and the triangles' corners beside them.
+ * One pass in slot order: the reads are scattered over the scene's arrays
+ * but independent of each other, so the processor overlaps their cache
+ * misses. */
 static void
 set_leaf_order(struct bvh *bvh, const struct world *w, const struct build_ref *refs)
 {
@@ -333,7 +347,7 @@ set_leaf_order(struct bvh *bvh, const struct world *w, const struct build_ref *r
 
 /* Bounds of the primitive in leaf slot `slot`. */
 static struct box
-slot_bounds(const struct bvh *bvh, const struct world *w, int slot)
+slot_bounds(const struct bvh *bvh, const struct world *w, uint32_t slot)
 {
     int prim = bvh->prims[slot];
     if (prim < bvh->tri_begin || prim >= bvh->tri_end) {
@@ -350,7 +364,7 @@ set_leaf_box(struct bvh_node *leaf, const struct bvh *bvh, const struct world *w
 {
     struct box b = box_empty();
     for (uint32_t slot = leaf->index; slot < leaf->index + leaf->count; slot++) {
-        b = box_union(b, slot_bounds(bvh, w, (int)slot));
+        b = box_union(b, slot_bounds(bvh, w, slot));
     }
     for (int i = 0; i < 3; i++) {
         leaf->lo[i] = float_below(vec3_axis(b.lo, i) - margin);
@@ -359,7 +373,7 @@ set_leaf_box(struct bvh_node *leaf, const struct bvh *bvh, const struct world *w
 }
 
 /* Every node's box, children before parents: in depth-first order both
- * children come after their parent, so one backward pass suffices. */
+ * children come after their parent, so one backward pass does it. */
 static void
 set_boxes(struct bvh *bvh, const struct world *w, real margin)
 {
@@ -392,7 +406,8 @@ alloc_array(size_t count, size_t size)
     return count > SIZE_MAX / size ? NULL : malloc(count * size);
 }
 
-/* A median split of n >= 1 primitives makes at most 2n - 1 nodes. */
+/* A median split of n >= 1 primitives makes at most 2n - 1 nodes (fewer
+ * with leaves of more than one: summarize gives the rest back). */
 static bool
 allocate(struct bvh *bvh, int n, struct build_ref **refs)
 {
@@ -438,16 +453,16 @@ bvh_build(struct bvh *bvh, const struct world *w, struct diag *err)
         return true;
     }
     struct build_ref *refs = NULL;
-    if (!allocate(bvh, w->n_prims, &refs)) {
+    /* n_nodes (an int) reaches 2n - 1. */
+    if (w->n_prims > INT_MAX / 2 || !allocate(bvh, w->n_prims, &refs)) {
         diag_set(err, NULL, 0, 0, "out of memory building a BVH over %d primitives", w->n_prims);
         free(refs);
         bvh_free(bvh);
         return false;
     }
     bvh->n_prims = w->n_prims;
-    struct builder b = {.bvh = bvh, .refs = refs};
     real margin = margin_for(make_refs(w, refs));
-    build_subtree(&b, 0, w->n_prims, 1);
+    build_subtree(bvh, refs, 0, w->n_prims, 1);
     assert(bvh->depth <= BVH_MAX_DEPTH);
     set_leaf_order(bvh, w, refs);
     free(refs);
@@ -455,6 +470,7 @@ bvh_build(struct bvh *bvh, const struct world *w, struct diag *err)
     summarize(bvh);
     return true;
 }
+/* END LAB */
 
 void
 bvh_free(struct bvh *bvh)
@@ -465,6 +481,44 @@ bvh_free(struct bvh *bvh)
     *bvh = (struct bvh){.nodes = NULL};
 }
 
+/* LAB 05: traverse the tree: slab tests, the nearer child first, the farther one
+ * pushed with its entry distance, boxes beyond the closest hit skipped
+ * (docs/stages/05_bvh.md#lab)
+ * stub: bool
+ * bvh_intersect(
+ *     const struct bvh *bvh,
+ *     const struct world *w,
+ *     ray r,
+ *     real t_max,
+ *     struct hit *out,
+ *     struct stats *st)
+ * {
+ *     (void)bvh;
+ *     bool found = false;
+ *     for (int prim = 0; prim < w->n_prims; prim++) {
+ *         if (intersect_prim(w->scene, prim, r, t_max, out)) {
+ *             t_max = out->t;
+ *             found = true;
+ *         }
+ *     }
+ *     st->prim_tests += (uint64_t)w->n_prims;
+ *     return found;
+ * }
+ *
+ * bool
+ * bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, struct stats *st)
+ * {
+ *     (void)bvh;
+ *     struct hit h;
+ *     for (int prim = 0; prim < w->n_prims; prim++) {
+ *         if (intersect_prim(w->scene, prim, r, t_max, &h)) {
+ *             st->prim_tests += (uint64_t)prim + 1;
+ *             return true;
+ *         }
+ *     }
+ *     st->prim_tests += (uint64_t)w->n_prims;
+ *     return false;
+ * } */
 /* --- traversal ------------------------------------------------------------ */
 
 /* A ray prepared for slab tests. */
@@ -491,14 +545,15 @@ slab_ray_make(ray r)
 
 /*
  * Narrow [*t_near, *t_far] to the t where the ray is inside the slab
- * lo <= x <= hi of one axis: between (lo - o) / d and (hi - o) / d (Kay and
- * Kajiya's slabs).  A ray parallel to the slab is inside it for every t or
- * for none.  Testing that case on its own, instead of letting 1/d be
- * infinite as Williams et al. do, keeps the test free of 0 * infinity = NaN
- * (an origin exactly on the slab's plane): no NaN ever reaches a comparison,
- * and a ray running in a box's face counts as inside the box, which is
- * closed.  (|d| < 1/REAL_MAX counts as parallel: over any distance at which
- * a float box can lie, such a ray moves less than 1e-200.)
+ * lo <= x <= hi of axis i: between (lo - o) / d and (hi - o) / d, the
+ * plane the ray crosses first chosen by the sign of d.  A ray parallel to
+ * the slab is inside it for every t or for none.  Testing that case apart,
+ * rather than letting 1/d be infinite as Williams et al. do, keeps
+ * 0 * infinity = NaN (an origin exactly on the slab's plane) out of the
+ * test: no NaN ever reaches a comparison, and a ray running in a box's face
+ * counts as inside the box, which is closed.  (|d| < 1/REAL_MAX counts as
+ * parallel: over any distance at which a float box can lie, such a ray
+ * moves less than 1e-200.)
  */
 static inline void
 clip_slab(real lo, real hi, const struct slab_ray *sr, int i, real *t_near, real *t_far)
@@ -514,8 +569,8 @@ clip_slab(real lo, real hi, const struct slab_ray *sr, int i, real *t_near, real
     *t_far = t_leave < *t_far ? t_leave : *t_far;
 }
 
-/* Where the ray enters the node's box, if it meets the box at some t in
- * [0, t_limit]: the three slabs' intervals intersected. */
+/* Whether the ray meets the node's box at some t in [0, t_limit], and
+ * where it enters: the three slabs' intervals intersected. */
 static inline bool
 ray_box_entry(const struct bvh_node *node, const struct slab_ray *sr, real t_limit, real *entry)
 {
@@ -560,26 +615,40 @@ intersect_slot(
 
 /*
  * A traversal in progress: the nodes still to visit, each with the t where
- * the ray enters it, and the counters for struct stats.  The stack holds at
- * most one node per level (the far child of each node on the current path).
+ * the ray enters it, and the counts for struct stats (node_visits counts
+ * box tests).  The stack holds at most one node per level: the other child
+ * of each node on the path to the current one.
  */
+struct pending {
+    uint32_t id;
+    real t_entry;
+};
+
 struct traversal {
     struct slab_ray sr;
-
-    struct {
-        uint32_t id;
-        real t_entry;
-    } stack[BVH_MAX_DEPTH];
-
+    struct pending stack[BVH_MAX_DEPTH];
     int top;
     uint64_t visits, tests;
 };
 
+/* The root, if the ray meets its box by t_limit; NO_NODE otherwise. */
+static uint32_t
+start(const struct bvh *bvh, struct traversal *tr, real t_limit)
+{
+    real t_entry;
+    if (bvh->n_nodes == 0) {
+        return NO_NODE;
+    }
+    tr->visits++;
+    return ray_box_entry(&bvh->nodes[0], &tr->sr, t_limit, &t_entry) ? 0 : NO_NODE;
+}
+
 /*
- * Test the children of interior node `id` against the ray (up to t_limit):
- * returns the child to visit next, or UINT32_MAX when the ray misses both,
- * and pushes the other child when both are hit.  The near child is the one
- * on the side of the split plane the ray comes from.
+ * Test the children of interior node `id` against the ray (up to t_limit)
+ * and return the one to visit next, pushing the other when both are hit, or
+ * return NO_NODE when both are missed.  The near child is the one on the
+ * side of the split plane the ray comes from: along the split axis, the
+ * first child holds the lower centroids.
  */
 static inline uint32_t
 descend(const struct bvh *bvh, uint32_t id, real t_limit, struct traversal *tr)
@@ -597,11 +666,11 @@ descend(const struct bvh *bvh, uint32_t id, real t_limit, struct traversal *tr)
         tr->stack[tr->top].id = far;
         tr->stack[tr->top++].t_entry = t_far_child;
     }
-    return hit_near ? near : hit_far ? far : UINT32_MAX;
+    return hit_near ? near : hit_far ? far : NO_NODE;
 }
 
-/* The next node from the stack that the ray enters no later than t_limit,
- * or UINT32_MAX when none is left. */
+/* The next node from the stack that the ray enters no later than t_limit
+ * (the limit may have shrunk since it was pushed), or NO_NODE. */
 static inline uint32_t
 pop(struct traversal *tr, real t_limit)
 {
@@ -611,7 +680,7 @@ pop(struct traversal *tr, real t_limit)
             return tr->stack[tr->top].id;
         }
     }
-    return UINT32_MAX;
+    return NO_NODE;
 }
 
 /*
@@ -620,7 +689,7 @@ pop(struct traversal *tr, real t_limit)
  * at t it tests primitives up to just above t (t_prim = the next real after
  * t) and lets an equal t replace the best when its primitive number is
  * lower.  Boxes are entered up to t itself (t_box): a box entered after it
- * holds nothing as close.
+ * holds nothing as close, one entered at t may hold a tie.
  */
 struct closest {
     struct hit *out;
@@ -665,17 +734,12 @@ bvh_intersect(
 {
     struct closest c = {.out = out, .t_box = t_max, .t_prim = t_max};
     struct traversal tr = {.sr = slab_ray_make(r)};
-    real t_root;
-    uint32_t id = UINT32_MAX;
-    if (bvh->n_nodes > 0 && ray_box_entry(&bvh->nodes[0], &tr.sr, t_max, &t_root)) {
-        id = 0;
-    }
-    tr.visits = bvh->n_nodes > 0;
-    while (id != UINT32_MAX) {
+    uint32_t id = start(bvh, &tr, t_max);
+    while (id != NO_NODE) {
         const struct bvh_node *node = &bvh->nodes[id];
         if (node->count == 0) {
             id = descend(bvh, id, c.t_box, &tr);
-            id = id != UINT32_MAX ? id : pop(&tr, c.t_box);
+            id = id != NO_NODE ? id : pop(&tr, c.t_box);
             continue;
         }
         closest_in_leaf(bvh, w, node, r, &c);
@@ -710,18 +774,13 @@ bool
 bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, struct stats *st)
 {
     struct traversal tr = {.sr = slab_ray_make(r)};
-    real t_root;
-    uint32_t id = UINT32_MAX;
-    if (bvh->n_nodes > 0 && ray_box_entry(&bvh->nodes[0], &tr.sr, t_max, &t_root)) {
-        id = 0;
-    }
-    tr.visits = bvh->n_nodes > 0;
     bool hit = false;
-    while (id != UINT32_MAX && !hit) {
+    uint32_t id = start(bvh, &tr, t_max);
+    while (id != NO_NODE && !hit) {
         const struct bvh_node *node = &bvh->nodes[id];
         if (node->count == 0) {
             id = descend(bvh, id, t_max, &tr);
-            id = id != UINT32_MAX ? id : pop(&tr, t_max);
+            id = id != NO_NODE ? id : pop(&tr, t_max);
             continue;
         }
         hit = any_in_leaf(bvh, w, node, r, t_max, &tr);
@@ -731,3 +790,4 @@ bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, st
     st->prim_tests += tr.tests;
     return hit;
 }
+/* END LAB */

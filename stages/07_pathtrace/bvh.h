@@ -6,7 +6,10 @@
  * halves of equal count along the longest axis of their centroids' bounds,
  * until at most BVH_MAX_LEAF remain.  The answer is exactly the brute-force
  * answer of world_intersect: the same primitive and the same t, bit for bit,
- * ties going to the lowest primitive number.
+ * ties going to the lowest primitive number.  (Provided the primitive tests
+ * report hits on their primitives: a test that reports a "hit" far off its
+ * primitive, as Moller-Trumbore can on an exactly degenerate triangle whose
+ * determinant comes out as rounding noise, finds it in no box.)
  *
  * Memory layout: the nodes are one array in depth-first order.  An interior
  * node's first child is the next node; its second child is nodes[index].  A
@@ -25,9 +28,9 @@
 #include "stats.h"
 #include "vec3.h"
 
-/* Most primitives in a leaf.  Measured on the 1.08M-triangle Buddha (see
- * tests/bench/README.md): 2 traces fastest; 1 doubles the nodes for ~4% more
- * speed on shadow rays only, 4 is ~20% slower. */
+/* Most primitives in a leaf (another may be chosen with -DBVH_MAX_LEAF=N).
+ * Measured on the 1.08M-triangle Buddha and the bunny (tests/bench): 1
+ * traces as fast as 2 with twice the nodes; 4 is 2-10% slower, 8 15-20%. */
 #ifndef BVH_MAX_LEAF
 #define BVH_MAX_LEAF 2
 #endif
@@ -75,7 +78,8 @@ void bvh_free(struct bvh *bvh);
 
 /* The closest hit along r with t in (0, t_max), ties to the lowest primitive
  * number: t, u, v and prim filled as intersect_prim does; not finished
- * (hit_finish does that).  False on a miss. */
+ * (hit_finish does that).  False on a miss.  Adds the boxes tested to
+ * st->node_visits and the primitives tested to st->prim_tests. */
 bool bvh_intersect(
     const struct bvh *bvh,
     const struct world *w,
@@ -84,7 +88,8 @@ bool bvh_intersect(
     struct hit *out,
     struct stats *st);
 
-/* True when any primitive is hit with t in (0, t_max); stops at the first. */
+/* True when any primitive is hit with t in (0, t_max); stops at the first.
+ * Counts as bvh_intersect does. */
 bool
 bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, struct stats *st);
 

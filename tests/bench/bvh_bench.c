@@ -1,0 +1,161 @@
+/*
+ * bvh_bench.c - how fast the stage's BVH builds and traces.
+ *
+ *     bvh_bench [ASSET_DIR]      (default ../shared/assets, from the project root)
+ *
+ * For the Happy Buddha subdivided to 1.08M triangles and for the Stanford
+ * bunny (69k), loaded through the scene loader and framed in a 600x600
+ * image: load and build time; camera rays (closest hit) and shadow rays to
+ * one point light (any hit) per second on 1 and 2 threads; BVH nodes visited
+ * and primitives tested per ray; and, on the bunny, the speed-up over
+ * testing every triangle (brute force timed on every BRUTE_STRIDE-th camera
+ * ray only, and said so).  A missing model is skipped with a message; the
+ * large one is then replaced by a generated sphere of 1M triangles.
+ * Exit status 0, 1 when something could not be built.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "benchlib.h"
+
+#define BIG_MODEL "happy_res3_subdiv16.glb"
+#define SMALL_MODEL "bunny.glb"
+#define SPHERE_BANDS 500 /* the stand-in: 4 * 500^2 = 1M triangles */
+#define BRUTE_STRIDE 1024 /* brute force traces every 1024th camera ray */
+
+static void
+print_model(const struct bench_model *m)
+{
+    printf(
+        "\n%s: %d triangles, load %.3f s, build %.3f s (1 thread), %d nodes, depth %d, "
+        "%.1f MiB\n",
+        m->name,
+        m->scene.n_triangles,
+        m->seconds_load,
+        m->seconds_build,
+        m->bvh.n_nodes,
+        m->bvh.depth,
+        (double)m->bvh.bytes / (1 << 20));
+    printf(
+        "  %-8s %8s %8s %12s %12s %10s %10s\n",
+        "rays",
+        "count",
+        "hits",
+        "Mrays/s 1t",
+        "Mrays/s 2t",
+        "nodes/ray",
+        "prims/ray");
+}
+
+static void
+print_row(const char *what, const struct bench_result *one, const struct bench_result *two)
+{
+    double n = one->rays ? (double)one->rays : 1;
+    printf(
+        "  %-8s %8zu %8llu %12.2f %12.2f %10.1f %10.1f\n",
+        what,
+        one->rays,
+        (unsigned long long)one->hits,
+        bench_mrays(one),
+        bench_mrays(two),
+        (double)one->counts.node_visits / n,
+        (double)one->counts.prim_tests / n);
+}
+
+/* Camera and shadow rays through the BVH on 1 and 2 threads; fills
+ * camera_1t (the brute-force comparison needs it). */
+static bool
+trace_model(
+    struct bench_model *m,
+    const struct ray_batch *camera,
+    const struct ray_batch *shadow,
+    struct bench_result *camera_1t)
+{
+    struct bench_result r2;
+    struct bench_result s1;
+    struct bench_result s2;
+    bool ok = bench_time(camera, 1, 1, BENCH_RUNS, bench_bvh_closest, m, camera_1t)
+              && bench_time(camera, 1, 2, BENCH_RUNS, bench_bvh_closest, m, &r2)
+              && bench_time(shadow, 1, 1, BENCH_RUNS, bench_bvh_any, m, &s1)
+              && bench_time(shadow, 1, 2, BENCH_RUNS, bench_bvh_any, m, &s2);
+    if (ok) {
+        print_row("camera", camera_1t, &r2);
+        print_row("shadow", &s1, &s2);
+    }
+    return ok;
+}
+
+/* Brute force on a subset of the camera rays, extrapolated to rays/s. */
+static bool
+compare_brute(struct bench_model *m, const struct ray_batch *camera, const struct bench_result *bvh)
+{
+    struct bench_result brute;
+    if (!bench_time(camera, BRUTE_STRIDE, 1, 1, bench_brute_closest, m, &brute)) {
+        return false;
+    }
+    double rays_per_s = (double)brute.rays / brute.seconds;
+    printf(
+        "  brute force, 1 thread, on every %dth camera ray only (%zu rays, %.2f s): "
+        "%.0f rays/s,\n  extrapolated to all camera rays: the BVH is %.0fx faster\n",
+        BRUTE_STRIDE,
+        brute.rays,
+        brute.seconds,
+        rays_per_s,
+        bench_mrays(bvh) * 1e6 / rays_per_s);
+    return true;
+}
+
+/* Build, make the rays, trace; brute force too when asked. */
+static bool
+bench_model(struct bench_model *m, bool with_brute)
+{
+    struct diag err;
+    struct ray_batch camera = {.n = 0};
+    struct ray_batch shadow = {.n = 0};
+    struct bench_result camera_1t;
+    bool ok = bench_build(m, &err);
+    if (!ok) {
+        diag_print(stderr, &err, "error");
+    }
+    ok = ok && bench_camera_rays(m, &camera) && bench_shadow_rays(m, &camera, &shadow);
+    if (ok) {
+        print_model(m);
+        ok = trace_model(m, &camera, &shadow, &camera_1t);
+    }
+    ok = ok && (!with_brute || compare_brute(m, &camera, &camera_1t));
+    ray_batch_free(&camera);
+    ray_batch_free(&shadow);
+    return ok;
+}
+
+int
+main(int argc, char **argv)
+{
+    const char *assets = argc > 1 ? argv[1] : "../shared/assets";
+    printf(
+        "BVH benchmark: %s precision, BVH_MAX_LEAF %d, %dx%d camera rays, 1 point light, "
+        "best of %d runs\n",
+        REAL_NAME,
+        BVH_MAX_LEAF,
+        BENCH_WIDTH,
+        BENCH_HEIGHT,
+        BENCH_RUNS);
+    struct diag err;
+    struct bench_model m;
+    bool ok = true;
+    if (bench_load(&m, assets, BIG_MODEL, &err)) {
+        ok = bench_model(&m, false);
+    } else {
+        printf("skipping %s: %s\n", BIG_MODEL, err.msg);
+        bench_model_free(&m);
+        ok = bench_generate_sphere(&m, SPHERE_BANDS, &err) && bench_model(&m, false);
+    }
+    bench_model_free(&m);
+    if (bench_load(&m, assets, SMALL_MODEL, &err)) {
+        ok = bench_model(&m, true) && ok;
+    } else {
+        printf("skipping %s: %s\n", SMALL_MODEL, err.msg);
+    }
+    bench_model_free(&m);
+    return ok ? 0 : 1;
+}

@@ -1,0 +1,247 @@
+/*
+ * embree_bench.c - the same rays through Intel Embree 3, for scale.
+ *
+ *     embree_bench [ASSET_DIR]   (default ../shared/assets, from the project root)
+ *
+ * Loads the models as bvh_bench does (same loader, framing, camera rays and
+ * shadow rays, the shadow rays starting from our hits), gives Embree the
+ * same triangles (as float, the only precision it takes), and traces the
+ * rays with its single-ray API, rtcIntersect1 and rtcOccluded1, on 1 and 2
+ * threads.  Prints both builds' times, both throughputs, and ours as a
+ * fraction of Embree's.  Embree's BVH is a SAH-built 4- or 8-wide tree
+ * traversed with SIMD: it is here to show how far a median split with a
+ * binary tree in double precision is from production, not to be matched.
+ * Built only where Debian's libembree-dev is installed.
+ */
+#include <embree3/rtcore.h>
+#include <float.h>
+#include <stdio.h>
+
+#include "benchlib.h"
+
+#define BIG_MODEL "happy_res3_subdiv16.glb"
+#define SMALL_MODEL "bunny.glb"
+#define SPHERE_BANDS 500
+
+struct embree {
+    RTCDevice device;
+    RTCScene scene;
+    double seconds_build;
+};
+
+/* The model's triangles as one Embree triangle geometry. */
+static bool
+add_triangles(RTCDevice device, RTCScene scene, const struct scene *s)
+{
+    RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    float *v = rtcSetNewGeometryBuffer(
+        geometry,
+        RTC_BUFFER_TYPE_VERTEX,
+        0,
+        RTC_FORMAT_FLOAT3,
+        3 * sizeof(float),
+        (size_t)s->n_vertices);
+    unsigned *index = rtcSetNewGeometryBuffer(
+        geometry,
+        RTC_BUFFER_TYPE_INDEX,
+        0,
+        RTC_FORMAT_UINT3,
+        3 * sizeof(unsigned),
+        (size_t)s->n_triangles);
+    if (!v || !index) {
+        rtcReleaseGeometry(geometry);
+        return false;
+    }
+    for (int i = 0; i < s->n_vertices; i++) {
+        v[3 * i] = (float)s->positions[i].x;
+        v[3 * i + 1] = (float)s->positions[i].y;
+        v[3 * i + 2] = (float)s->positions[i].z;
+    }
+    for (int i = 0; i < s->n_triangles; i++) {
+        for (int k = 0; k < 3; k++) {
+            index[3 * i + k] = (unsigned)s->triangles[i].v[k];
+        }
+    }
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(scene, geometry);
+    rtcReleaseGeometry(geometry);
+    return true;
+}
+
+/* Embree's BVH over the model, on a device limited to `threads` build
+ * threads; the build (rtcCommitScene) is timed. */
+static bool
+embree_build(struct embree *e, const struct scene *s, int threads)
+{
+    char config[32];
+    snprintf(config, sizeof config, "threads=%d", threads);
+    e->device = rtcNewDevice(config);
+    e->scene = e->device ? rtcNewScene(e->device) : NULL;
+    if (!e->scene || !add_triangles(e->device, e->scene, s)) {
+        return false;
+    }
+    double start = clock_seconds();
+    rtcCommitScene(e->scene);
+    e->seconds_build = clock_seconds() - start;
+    return rtcGetDeviceError(e->device) == RTC_ERROR_NONE;
+}
+
+static void
+embree_free(struct embree *e)
+{
+    if (e->scene) {
+        rtcReleaseScene(e->scene);
+    }
+    if (e->device) {
+        rtcReleaseDevice(e->device);
+    }
+}
+
+static struct RTCRay
+embree_ray(ray r, real t_max)
+{
+    struct RTCRay er = {
+        .org_x = (float)r.o.x,
+        .org_y = (float)r.o.y,
+        .org_z = (float)r.o.z,
+        .tnear = 0,
+        .dir_x = (float)r.d.x,
+        .dir_y = (float)r.d.y,
+        .dir_z = (float)r.d.z,
+        .tfar = t_max < FLT_MAX ? (float)t_max : INFINITY,
+        .mask = ~0u,
+    };
+    return er;
+}
+
+static bool
+embree_closest(const void *ctx, ray r, real t_max, struct stats *st)
+{
+    const struct embree *e = ctx;
+    struct RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    struct RTCRayHit rh = {.ray = embree_ray(r, t_max)};
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(e->scene, &context, &rh);
+    (void)st;
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+}
+
+static bool
+embree_any(const void *ctx, ray r, real t_max, struct stats *st)
+{
+    const struct embree *e = ctx;
+    struct RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    struct RTCRay er = embree_ray(r, t_max);
+    rtcOccluded1(e->scene, &context, &er);
+    (void)st;
+    return er.tfar < 0; /* Embree marks an occluded ray with tfar = -inf */
+}
+
+/* One kind of ray through both, on 1 and 2 threads. */
+static bool
+compare(
+    const char *what,
+    const struct ray_batch *b,
+    bench_trace_fn ours,
+    const void *model,
+    bench_trace_fn theirs,
+    const struct embree *e)
+{
+    struct bench_result r[4];
+    for (int threads = 1; threads <= 2; threads++) {
+        int k = 2 * (threads - 1);
+        if (!bench_time(b, 1, threads, BENCH_RUNS, ours, model, &r[k])
+            || !bench_time(b, 1, threads, BENCH_RUNS, theirs, e, &r[k + 1])) {
+            return false;
+        }
+    }
+    printf(
+        "  %-7s %7zu %8llu %8llu %9.2f %9.2f %9.2f %9.2f %7.0f%% %6.0f%%\n",
+        what,
+        b->n,
+        (unsigned long long)r[0].hits,
+        (unsigned long long)r[1].hits,
+        bench_mrays(&r[0]),
+        bench_mrays(&r[1]),
+        bench_mrays(&r[2]),
+        bench_mrays(&r[3]),
+        100 * bench_mrays(&r[0]) / bench_mrays(&r[1]),
+        100 * bench_mrays(&r[2]) / bench_mrays(&r[3]));
+    return true;
+}
+
+static bool
+bench_against_embree(struct bench_model *m)
+{
+    struct diag err;
+    struct embree one = {0};
+    struct embree two = {0};
+    struct ray_batch camera = {.n = 0};
+    struct ray_batch shadow = {.n = 0};
+    bool ok = bench_build(m, &err) && embree_build(&one, &m->scene, 1)
+              && embree_build(&two, &m->scene, 2) && bench_camera_rays(m, &camera)
+              && bench_shadow_rays(m, &camera, &shadow);
+    if (ok) {
+        printf(
+            "\n%s: %d triangles; build: ours %.3f s (1 thread), Embree %.3f s (1 thread), "
+            "%.3f s (2 threads)\n",
+            m->name,
+            m->scene.n_triangles,
+            m->seconds_build,
+            one.seconds_build,
+            two.seconds_build);
+        printf(
+            "  %-7s %7s %8s %8s %9s %9s %9s %9s %8s %7s\n",
+            "rays",
+            "count",
+            "hits",
+            "Embree",
+            "ours 1t",
+            "Embree",
+            "ours 2t",
+            "Embree",
+            "ours/E 1t",
+            "2t");
+        ok = compare("camera", &camera, bench_bvh_closest, m, embree_closest, &one)
+             && compare("shadow", &shadow, bench_bvh_any, m, embree_any, &one);
+    } else {
+        printf("%s: could not build (%s)\n", m->name, err.msg);
+    }
+    ray_batch_free(&camera);
+    ray_batch_free(&shadow);
+    embree_free(&one);
+    embree_free(&two);
+    return ok;
+}
+
+int
+main(int argc, char **argv)
+{
+    const char *assets = argc > 1 ? argv[1] : "../shared/assets";
+    printf(
+        "Embree 3 against the stage's BVH: same models and rays, %s precision for ours, "
+        "float for Embree; Mrays/s, best of %d runs\n",
+        REAL_NAME,
+        BENCH_RUNS);
+    struct diag err;
+    struct bench_model m;
+    bool ok = true;
+    if (bench_load(&m, assets, BIG_MODEL, &err)) {
+        ok = bench_against_embree(&m);
+    } else {
+        printf("skipping %s: %s\n", BIG_MODEL, err.msg);
+        bench_model_free(&m);
+        ok = bench_generate_sphere(&m, SPHERE_BANDS, &err) && bench_against_embree(&m);
+    }
+    bench_model_free(&m);
+    if (bench_load(&m, assets, SMALL_MODEL, &err)) {
+        ok = bench_against_embree(&m) && ok;
+    } else {
+        printf("skipping %s: %s\n", SMALL_MODEL, err.msg);
+    }
+    bench_model_free(&m);
+    return ok ? 0 : 1;
+}
