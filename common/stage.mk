@@ -22,7 +22,10 @@ $(OUT)/%.o: %.c
 $(COMMON_LIB): FORCE
 	@$(MAKE) --no-print-directory -C $(ROOT)/common
 
+# The double build's tests also run the float build of the stage (the
+# extremes battery compares the two).
 test: all
+	@$(if $(filter double0,$(REAL)$(SANITIZE)),$(MAKE) --no-print-directory REAL=float all)
 	@$(MAKE) --no-print-directory -C $(ROOT)/tests stage STAGE=$(STAGE)
 
 clean:

@@ -129,22 +129,41 @@ solve_planar(vec3 p0, vec3 e1, vec3 e2, ray r, real *t, real *u, real *v)
     /* END LAB */
 }
 
+/*
+ * A triangle or parallelogram of zero area (a repeated corner, collinear
+ * corners, parallel edges) spans no plane.  Its determinant e1 . (d x e2) is
+ * zero only in exact arithmetic: rounded, it is a tiny number of either
+ * sign, and a ray along the shape's line would "hit" it at an arbitrary t
+ * about one time in thirty (docs/extremes.md).  Such shapes are never hit
+ * (docs/scene-format.md): a hit needs edges whose cross product is not
+ * exactly zero.  The test comes last, so only rays that pass every other
+ * test pay for it.
+ */
+static bool
+spans_plane(vec3 e1, vec3 e2)
+{
+    return !vec3_is_zero(vec3_cross(e1, e2));
+}
+
 bool
 intersect_quad(const struct quad *quad, ray r, real t_max, real *t, real *u, real *v)
 {
     if (!solve_planar(quad->corner, quad->edge1, quad->edge2, r, t, u, v)) {
         return false;
     }
-    return *u >= 0 && *u <= 1 && *v >= 0 && *v <= 1 && *t > 0 && *t < t_max;
+    return *u >= 0 && *u <= 1 && *v >= 0 && *v <= 1 && *t > 0 && *t < t_max
+           && spans_plane(quad->edge1, quad->edge2);
 }
 
 bool
 intersect_triangle(vec3 p0, vec3 p1, vec3 p2, ray r, real t_max, real *t, real *u, real *v)
 {
-    if (!solve_planar(p0, vec3_sub(p1, p0), vec3_sub(p2, p0), r, t, u, v)) {
+    vec3 e1 = vec3_sub(p1, p0);
+    vec3 e2 = vec3_sub(p2, p0);
+    if (!solve_planar(p0, e1, e2, r, t, u, v)) {
         return false;
     }
-    return *u >= 0 && *v >= 0 && *u + *v <= 1 && *t > 0 && *t < t_max;
+    return *u >= 0 && *v >= 0 && *u + *v <= 1 && *t > 0 && *t < t_max && spans_plane(e1, e2);
 }
 
 /* An area light's rectangle, as a quad. */
