@@ -61,6 +61,11 @@ demo: all
 	done
 	@echo "wrote out/*.png"
 
+# make trade: speed against accuracy for every stage -> docs/trade/ (< 15 min
+# on 2 cores); make trade QUICK=1: reduced sweep -> build/trade/quick/ (< 1 min).
+trade: all
+	@$(MAKE) --no-print-directory -C tests/trade
+
 # Speed: BVH build and trace rates, against brute force and Embree (tests/bench).
 bench: all
 	@$(MAKE) --no-print-directory -C tests/bench run
@@ -91,4 +96,4 @@ check-labs: all
 clean:
 	rm -rf build
 
-.PHONY: all common test sanitize config demo bench docs-images clean lab grade diffs branches check-labs $(STAGES)
+.PHONY: all common test sanitize config demo trade bench docs-images clean lab grade diffs branches check-labs $(STAGES)
