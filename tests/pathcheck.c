@@ -88,19 +88,6 @@ pathcheck_batches_free(struct pathcheck_batches *b)
 }
 
 bool
-pathcheck_same_bytes(const char *a, const char *b)
-{
-    size_t na = 0;
-    size_t nb = 0;
-    char *da = test_read_file(a, &na);
-    char *db = test_read_file(b, &nb);
-    bool same = da && db && na == nb && memcmp(da, db, na) == 0;
-    free(da);
-    free(db);
-    return same;
-}
-
-bool
 pathcheck_mean_image(const struct image *images, int k, struct image *out)
 {
     struct diag err;

@@ -72,9 +72,6 @@ bool pathcheck_render_batches(
     struct pathcheck_batches *out);
 void pathcheck_batches_free(struct pathcheck_batches *b);
 
-/* Whether two files exist and hold the same bytes. */
-bool pathcheck_same_bytes(const char *a, const char *b);
-
 /* The mean of k images of one size (out is allocated). */
 bool pathcheck_mean_image(const struct image *images, int k, struct image *out);
 

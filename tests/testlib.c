@@ -104,6 +104,39 @@ test_file_exists(const char *path)
     return stat(path, &st) == 0;
 }
 
+const char *const test_contract_keys[] = {
+    "width",
+    "height",
+    "spp",
+    "threads",
+    "seed",
+    "seconds_total",
+    "seconds_load",
+    "seconds_build",
+    "seconds_render",
+    "rays_camera",
+    "rays_shadow",
+    "rays_secondary",
+    "prim_tests",
+    "node_visits",
+    "nan_pixels",
+    "peak_rss_bytes",
+    NULL,
+};
+
+bool
+test_same_file(const char *a, const char *b)
+{
+    size_t na = 0;
+    size_t nb = 0;
+    char *da = test_read_file(a, &na);
+    char *db = test_read_file(b, &nb);
+    bool same = da && db && na == nb && memcmp(da, db, na) == 0;
+    free(da);
+    free(db);
+    return same;
+}
+
 char *
 test_read_file(const char *path, size_t *len)
 {

@@ -25,6 +25,12 @@ const char *test_root_path(const char *relative);
 bool test_write_file(const char *path, const char *text);
 bool test_file_exists(const char *path);
 
+/* Whether two files hold the same bytes (false if either cannot be read). */
+bool test_same_file(const char *a, const char *b);
+
+/* The numeric keys every --stats file holds (CONTRACT.md), NULL-terminated. */
+extern const char *const test_contract_keys[];
+
 /* Read a whole file; NULL on failure.  *len gets its length. Free it. */
 char *test_read_file(const char *path, size_t *len);
 

@@ -36,29 +36,14 @@ TEST(json_has_every_key_and_stage_values)
     const char *path = test_tmp_path("stats.json");
     struct diag err;
     CHECK(report_write_json(&r, path, &err));
-    static const char *const keys[] = {
-        "width",
-        "height",
-        "spp",
-        "threads",
-        "seed",
-        "seconds_total",
-        "seconds_load",
-        "seconds_build",
-        "seconds_render",
-        "rays_camera",
-        "rays_shadow",
-        "rays_secondary",
-        "prim_tests",
-        "node_visits",
-        "nan_pixels",
-        "peak_rss_bytes",
-        "penumbra_pixels",
-        "bvh_nodes",
-        "mean_leaf"};
-    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+    static const char *const stage_keys[] = {"penumbra_pixels", "bvh_nodes", "mean_leaf"};
+    for (int i = 0; test_contract_keys[i]; i++) {
         double v;
-        CHECK_MSG(test_json_number(path, keys[i], &v), "%s", keys[i]);
+        CHECK_MSG(test_json_number(path, test_contract_keys[i], &v), "%s", test_contract_keys[i]);
+    }
+    for (size_t i = 0; i < sizeof stage_keys / sizeof stage_keys[0]; i++) {
+        double v;
+        CHECK_MSG(test_json_number(path, stage_keys[i], &v), "%s", stage_keys[i]);
     }
     double v;
     CHECK(test_json_number(path, "bvh_nodes", &v) && v == 125);

@@ -32,19 +32,6 @@ small_scene_path(void)
     return path;
 }
 
-static bool
-same_file(const char *a, const char *b)
-{
-    size_t na = 0;
-    size_t nb = 0;
-    char *da = test_read_file(a, &na);
-    char *db = test_read_file(b, &nb);
-    bool same = da && db && na == nb && memcmp(da, db, na) == 0;
-    free(da);
-    free(db);
-    return same;
-}
-
 TEST(renders_every_output_format)
 {
     const char *formats[] = {"png", "ppm", "pfm"};
@@ -69,37 +56,23 @@ TEST(same_image_whatever_the_thread_count)
     const char *args2[] = {"-t", "2", "-o", two, NULL};
     CHECK(test_render(small_scene_path(), args1, NULL, 0) == 0);
     CHECK(test_render(small_scene_path(), args2, NULL, 0) == 0);
-    CHECK(same_file(one, two));
+    CHECK(test_same_file(one, two));
     /* and the same again on a second run */
     CHECK(test_render(small_scene_path(), args2, NULL, 0) == 0);
-    CHECK(same_file(one, two));
+    CHECK(test_same_file(one, two));
 }
 
 TEST(stats_json_has_every_contract_key)
 {
-    static const char *const keys[] = {
-        "width",
-        "height",
-        "spp",
-        "threads",
-        "seed",
-        "seconds_total",
-        "seconds_load",
-        "seconds_build",
-        "seconds_render",
-        "rays_camera",
-        "rays_shadow",
-        "rays_secondary",
-        "prim_tests",
-        "node_visits",
-        "nan_pixels",
-        "peak_rss_bytes"};
     const char *stats = test_tmp_path("stats.json");
     const char *args[] = {"--stats", stats, "-o", test_tmp_path("s.pfm"), "--seed", "7", NULL};
     CHECK(test_render(small_scene_path(), args, NULL, 0) == 0);
-    for (size_t i = 0; i < sizeof keys / sizeof keys[0]; i++) {
+    for (int i = 0; test_contract_keys[i]; i++) {
         double v;
-        CHECK_MSG(test_json_number(stats, keys[i], &v), "key %s", keys[i]);
+        CHECK_MSG(
+            test_json_number(stats, test_contract_keys[i], &v),
+            "key %s",
+            test_contract_keys[i]);
     }
     char *text = test_read_file(stats, NULL);
     CHECK(text && strstr(text, "\"stage\": \"" STAGE_NAME "\""));

@@ -173,13 +173,13 @@ TEST(sampling_is_deterministic)
         return;
     }
     CHECK_MSG(
-        pathcheck_same_bytes(test_tmp_path("t1.pfm"), test_tmp_path("t2.pfm")),
+        test_same_file(test_tmp_path("t1.pfm"), test_tmp_path("t2.pfm")),
         "-t 1 and -t 2 differ");
     CHECK_MSG(
-        pathcheck_same_bytes(test_tmp_path("t2.pfm"), test_tmp_path("t2again.pfm")),
+        test_same_file(test_tmp_path("t2.pfm"), test_tmp_path("t2again.pfm")),
         "the same seed twice differs");
     CHECK_MSG(
-        !pathcheck_same_bytes(test_tmp_path("t2.pfm"), test_tmp_path("seed8.pfm")),
+        !test_same_file(test_tmp_path("t2.pfm"), test_tmp_path("seed8.pfm")),
         "seeds 7 and 8 give the same image: the seed is ignored");
 }
 
