@@ -2,58 +2,83 @@
 #include "atomic_file.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
+/* Names tried for the temporary file before giving up. */
+#define TEMP_ATTEMPTS 100
+
+static bool
+write_failed(const char *path, int error, struct diag *err)
+{
+    diag_set(err, path, 0, 0, "cannot write: %s", strerror(error));
+    return false;
+}
+
+/* Create "path.tmp-PID-N" exclusively, beside the target so that rename()
+ * stays within one file system.  Not mkstemp(): it makes files of mode 0600,
+ * and an output should get the usual 0666 less the umask. */
 bool
 atomic_file_open(struct atomic_file *af, const char *path, struct diag *err)
 {
     af->f = NULL;
     af->path = path;
-    /* Same directory as the target, so rename() never crosses file systems. */
-    int n = snprintf(af->tmp_path, sizeof af->tmp_path, "%s.tmp-XXXXXX", path);
-    if (n < 0 || (size_t)n >= sizeof af->tmp_path) {
-        diag_set(err, path, 0, 0, "cannot write: file name too long");
-        return false;
+    for (int attempt = 0; attempt < TEMP_ATTEMPTS; attempt++) {
+        int n = snprintf(
+            af->tmp_path,
+            sizeof af->tmp_path,
+            "%s.tmp-%ld-%d",
+            path,
+            (long)getpid(),
+            attempt);
+        if (n < 0 || (size_t)n >= sizeof af->tmp_path) {
+            return write_failed(path, ENAMETOOLONG, err);
+        }
+        int fd = open(af->tmp_path, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+        if (fd < 0 && errno == EEXIST) {
+            continue;
+        }
+        if (fd < 0) {
+            return write_failed(path, errno, err);
+        }
+        af->f = fdopen(fd, "wb");
+        if (!af->f) {
+            int error = errno;
+            close(fd);
+            remove(af->tmp_path);
+            return write_failed(path, error, err);
+        }
+        return true;
     }
-    int fd = mkstemp(af->tmp_path);
-    if (fd < 0) {
-        diag_set(err, path, 0, 0, "cannot write: %s", strerror(errno));
-        return false;
-    }
-    /* mkstemp creates the file private (0600); an image is for everyone to read. */
-    fchmod(fd, 0644);
-    af->f = fdopen(fd, "wb");
-    if (!af->f) {
-        diag_set(err, path, 0, 0, "cannot write: %s", strerror(errno));
-        close(fd);
-        remove(af->tmp_path);
-        return false;
-    }
-    return true;
+    return write_failed(path, EEXIST, err);
 }
 
+/* Flush to the disk before the rename, so that the rename can never expose
+ * a half-written file, even after a power loss. */
 bool
 atomic_file_commit(struct atomic_file *af, struct diag *err)
 {
-    bool ok = !ferror(af->f);
-    int saved = errno;
-    if (fclose(af->f) != 0 && ok) {
-        ok = false;
-        saved = errno;
+    int error = ferror(af->f) ? EIO : 0;
+    if (!error && fflush(af->f) != 0) {
+        error = errno;
+    }
+    if (!error && fsync(fileno(af->f)) != 0) {
+        error = errno;
+    }
+    if (fclose(af->f) != 0 && !error) {
+        error = errno;
     }
     af->f = NULL;
-    if (ok && rename(af->tmp_path, af->path) != 0) {
-        ok = false;
-        saved = errno;
+    if (!error && rename(af->tmp_path, af->path) != 0) {
+        error = errno;
     }
-    if (!ok) {
-        diag_set(err, af->path, 0, 0, "cannot write: %s", strerror(saved ? saved : EIO));
+    if (error) {
         remove(af->tmp_path);
+        return write_failed(af->path, error, err);
     }
-    return ok;
+    return true;
 }
 
 void

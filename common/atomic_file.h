@@ -13,7 +13,7 @@
 
 struct atomic_file {
     FILE *f;
-    char tmp_path[1024]; /* the temporary file, beside the target */
+    char tmp_path[4096]; /* the temporary file, beside the target */
     const char *path; /* the target */
 };
 

@@ -11,8 +11,9 @@
  */
 #include "image.h"
 
+#include "atomic_file.h"
+
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -723,10 +724,6 @@ write_pfm(struct sink *s, const struct image *img)
 
 /* ---- image_write ------------------------------------------------------------ */
 
-/* Extra room for ".tmp-PID-N" after the target's name. */
-#define TEMP_SUFFIX_MAX 48
-#define TEMP_ATTEMPTS 100
-
 static bool
 write_failed(const char *path, int error, struct diag *err)
 {
@@ -734,42 +731,15 @@ write_failed(const char *path, int error, struct diag *err)
     return false;
 }
 
-/* Create and open "path.tmp-PID-N" exclusively, beside the target so that
- * rename() stays within one file system.  Not mkstemp(): it makes files of
- * mode 0600, and an image should get the usual 0666 less the umask. */
-static int
-create_temp(const char *path, char *tmp, size_t cap, struct diag *err)
-{
-    for (int attempt = 0; attempt < TEMP_ATTEMPTS; attempt++) {
-        snprintf(tmp, cap, "%s.tmp-%ld-%d", path, (long)getpid(), attempt);
-        int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-        if (fd >= 0) {
-            return fd;
-        }
-        if (errno != EEXIST) {
-            break;
-        }
-    }
-    write_failed(path, errno, err);
-    return -1;
-}
-
-/* Encode into the open temporary file fd and close it (always), flushing it
- * to the disk first so that the rename cannot expose a half-written file. */
+/* Encode into f, the open temporary file; false (err set) on a write error. */
 static bool
 encode_stdio(
     const struct image *img,
     enum image_format format,
-    int fd,
+    FILE *f,
     const char *path,
     struct diag *err)
 {
-    FILE *f = fdopen(fd, "wb");
-    if (!f) {
-        int error = errno;
-        close(fd);
-        return write_failed(path, error, err);
-    }
     struct sink s = {.f = f};
     if (format == IMAGE_FORMAT_PNG) {
         write_png(&s, img);
@@ -778,48 +748,24 @@ encode_stdio(
     } else {
         write_pfm(&s, img);
     }
-    if (!s.error && fflush(f) != 0) {
-        s.error = errno;
-    }
-    if (!s.error && fsync(fileno(f)) != 0) {
-        s.error = errno;
-    }
-    if (fclose(f) != 0 && !s.error) {
-        s.error = errno;
-    }
     return s.error ? write_failed(path, s.error, err) : true;
 }
 
-#ifdef HAVE_OPENEXR
-static bool
-encode_exr(const struct image *img, int fd, const char *path, struct diag *err)
-{
-    bool ok = image_exr_write(img, fd, path, err);
-    if (ok && fsync(fd) != 0) {
-        ok = write_failed(path, errno, err);
-    }
-    if (close(fd) != 0 && ok) {
-        ok = write_failed(path, errno, err);
-    }
-    return ok;
-}
-#endif
-
-/* Encode img into fd, the temporary file, and close it. */
+/* Encode img into f, the temporary file (OpenEXR writes to its descriptor). */
 static bool
 encode(
     const struct image *img,
     enum image_format format,
-    int fd,
+    FILE *f,
     const char *path,
     struct diag *err)
 {
 #ifdef HAVE_OPENEXR
     if (format == IMAGE_FORMAT_EXR) {
-        return encode_exr(img, fd, path, err);
+        return image_exr_write(img, fileno(f), path, err);
     }
 #endif
-    return encode_stdio(img, format, fd, path, err);
+    return encode_stdio(img, format, f, path, err);
 }
 
 /* Formats this build cannot write, with the reason; true when format is OK. */
@@ -853,24 +799,15 @@ bool
 image_write(const struct image *img, const char *path, struct diag *err)
 {
     enum image_format format = image_format_from_path(path);
-    if (!check_format(format, path, err)) {
+    struct atomic_file af;
+    if (!check_format(format, path, err) || !atomic_file_open(&af, path, err)) {
         return false;
     }
-    size_t cap = strlen(path) + TEMP_SUFFIX_MAX;
-    char *tmp = malloc(cap);
-    if (!tmp) {
-        return write_failed(path, ENOMEM, err);
+    if (!encode(img, format, af.f, path, err)) {
+        atomic_file_abort(&af);
+        return false;
     }
-    int fd = create_temp(path, tmp, cap, err);
-    bool ok = fd >= 0 && encode(img, format, fd, path, err);
-    if (ok && rename(tmp, path) != 0) {
-        ok = write_failed(path, errno, err);
-    }
-    if (!ok && fd >= 0) {
-        remove(tmp);
-    }
-    free(tmp);
-    return ok;
+    return atomic_file_commit(&af, err);
 }
 
 /* ---- image_read_pfm --------------------------------------------------------- */
