@@ -87,21 +87,23 @@ light_sample_irradiance(
     struct stats *st,
     bool *blocked)
 {
+    /* cross(edge1, edge2) is the light's unit normal times its area A, so
+     * one product gives cos(theta') A, with no square root per sample. */
+    vec3 normal_area = vec3_cross(light->edge1, light->edge2);
     vec3 to_light = vec3_sub(y, h->p);
     real dist2 = vec3_length2(to_light);
     real dist = sqrt(dist2);
     real cos_surface = vec3_dot(h->n, to_light) / dist;
-    real cos_light = -vec3_dot(area_light_normal(light), to_light) / dist;
+    real cos_light_area = -vec3_dot(normal_area, to_light) / dist;
     *blocked = false;
-    if (!(cos_surface > 0 && cos_light > 0)) {
+    if (!(cos_surface > 0 && cos_light_area > 0)) {
         return vec3_splat(0);
     }
     if (!visible(w, h, y, st)) {
         *blocked = true;
         return vec3_splat(0);
     }
-    real geometry = cos_surface * cos_light / dist2;
-    return vec3_scale(light->radiance, geometry * area_light_area(light));
+    return vec3_scale(light->radiance, cos_surface * cos_light_area / dist2);
 }
 
 /* The sum of n samples of the light's irradiance, one in each cell of a
@@ -220,6 +222,7 @@ area_light_irradiance(
     sum = vec3_add(sum, sum_light_samples(w, h, light, more, rng, st, &blocked));
     return vec3_scale(sum, 1 / (real)(probes + more));
 }
+
 /* END LAB */
 
 vec3

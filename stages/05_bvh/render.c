@@ -80,7 +80,8 @@ shade_glass(
     struct stats *st)
 {
     /* LAB 04: smooth glass: trace the reflected and the refracted ray, weighted by F
-     * and 1 - F; enter or leave by the side the ray comes from (docs/stages/04_reflect_refract.md#lab)
+     * and 1 - F; enter or leave by the side the ray comes from
+     * (docs/stages/04_reflect_refract.md#lab)
      * stub: (void)renderer;
      * (void)m;
      * (void)r;

@@ -470,6 +470,7 @@ bvh_build(struct bvh *bvh, const struct world *w, struct diag *err)
     summarize(bvh);
     return true;
 }
+
 /* END LAB */
 
 void
@@ -790,4 +791,5 @@ bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, st
     st->prim_tests += tr.tests;
     return hit;
 }
+
 /* END LAB */

@@ -106,4 +106,5 @@ sample_bsdf(
     }
     return vec3_dot(out->d, h->ng) > 0;
 }
+
 /* END LAB */
