@@ -1,6 +1,7 @@
 # stagelight - top-level Makefile.
 #
-#   make            build the common core and every stage (build/NN_name/render)
+#   make            build the common core, every stage (build/NN_name/render)
+#                   and the tools (build/tools/: imgcmp, plotcsv, gen_meshes)
 #   make test       every test of common/ and of every stage; last line "N passed, N failed"
 #   make sanitize   the same tests built with AddressSanitizer + UBSan (build/sanitize/)
 #   make demo       render the showcase scenes through the stages into out/
@@ -17,7 +18,7 @@ include common/config.mk
 STAGES := $(notdir $(wildcard stages/[0-9][0-9]_*))
 LOGS := $(BUILDROOT)test-logs
 
-all: $(STAGES)
+all: $(STAGES) tools
 
 common:
 	@$(MAKE) --no-print-directory -C common
@@ -25,6 +26,10 @@ common:
 # Each stage after the common core, so parallel stage builds never race on it.
 $(STAGES): common
 	@$(MAKE) --no-print-directory -C stages/$@
+
+# The command-line tools of tests/tools/ (image comparison, plots, meshes).
+tools: common
+	@$(MAKE) --no-print-directory -C tests tools
 
 # Every test program prints its own results; the last line is the sum.
 test: all
@@ -36,7 +41,7 @@ test: all
 	@tests/lab/test-lab-tools.sh 2>&1 | tee $(LOGS)/lab-tools.log
 	@tests/lab/check-diffs.sh 2>&1 | tee $(LOGS)/diffs.log
 	@tests/lab/check-labs.sh --quick 2>&1 | tee $(LOGS)/labs.log
-	@tests/sum-results.sh $(LOGS)/common.log $(foreach s,$(STAGES),$(LOGS)/$(s).log) \
+	@tests/harness/sum-results.sh $(LOGS)/common.log $(foreach s,$(STAGES),$(LOGS)/$(s).log) \
 		$(LOGS)/lab-tools.log $(LOGS)/diffs.log $(LOGS)/labs.log
 
 sanitize:
@@ -96,4 +101,4 @@ check-labs: all
 clean:
 	rm -rf build
 
-.PHONY: all common test sanitize config demo trade bench docs-images clean lab grade diffs branches check-labs $(STAGES)
+.PHONY: all common tools test sanitize config demo trade bench docs-images clean lab grade diffs branches check-labs $(STAGES)

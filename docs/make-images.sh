@@ -92,9 +92,9 @@ EOF
 }
 
 # The terrain scene of 05_bvh.md: 12,280 triangles from the generated test
-# meshes (tests/gen_meshes.c), which need `make -C tests tools`.
+# meshes (tests/tools/gen_meshes.c), which need `make -C tests tools`.
 terrain_scene() {
-    gen=$build/tests/tools/gen_meshes
+    gen=$build/tools/gen_meshes
     if [ ! -x "$gen" ] && [ "$build" = build ]; then
         ${MAKE:-make} --no-print-directory -C tests tools >"$tmp/make.log" 2>&1 \
             || { cat "$tmp/make.log" >&2; exit 1; }

@@ -13,7 +13,7 @@
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 render=$root/build/07_pathtrace/render
-imgcmp=$root/build/tests/tools/imgcmp
+imgcmp=$root/build/tools/imgcmp
 work=${TMPDIR:-/tmp}/pathtrace-bench.$$
 mkdir -p "$work"
 trap 'rm -rf "$work"' EXIT INT TERM

@@ -1,5 +1,5 @@
 /*
- * test_metrics.c - image error metrics (tests/metrics.c) on synthetic
+ * test_metrics.c - image error metrics (tests/lib/metrics.c) on synthetic
  * images whose answers are known by hand: identical images, constant
  * offsets, single bad pixels, an edge for the smooth mask, and block
  * statistics of renders with known noise.

@@ -1,5 +1,5 @@
 /*
- * test_stattest.c - the statistics machinery of tests/stattest.c against
+ * test_stattest.c - the statistics machinery of tests/lib/stattest.c against
  * closed forms (t with 1 and 2 degrees of freedom, chi-square with 2) and
  * tabulated values.  Values marked "mpmath" were computed with mpmath at 30
  * digits (betainc, gammainc, ncdf); quantiles are the usual table entries.

@@ -1,5 +1,5 @@
 /*
- * test_svgplot.c - the SVG plots of tests/svgplot.c: well-formed XML (by a
+ * test_svgplot.c - the SVG plots of tests/lib/svgplot.c: well-formed XML (by a
  * small checker below), escaped text, nice linear ticks, decade ticks on
  * log axes, reference lines, atomic writing and the Pareto front.
  */

@@ -10,7 +10,7 @@
 #   table          docs/README.md holds the current diff table
 #   stray          docs/diffs/ holds no diff of a stage that does not exist
 #   link           docs/stages/NN_name.md links its diff (../diffs/NN_name.diff)
-# One result line per check, like tests/run-tests.sh, and the closing line
+# One result line per check, like tests/harness/run-tests.sh, and the closing line
 # "N passed, N failed, N skipped".  Fix a stale diff with make diffs.
 #
 # Options:

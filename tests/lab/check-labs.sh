@@ -17,7 +17,7 @@
 #              also outside the regions or trivial (leaks.awk)
 #   solution   with the stage's solution copied in, every test of the
 #              handout passes: the handout is a complete harness     [full]
-# One result line per check, as tests/run-tests.sh prints them, details
+# One result line per check, as tests/harness/run-tests.sh prints them, details
 # indented, and the closing line "N passed, N failed, N skipped".
 #
 # Cost: the handouts stay in OUT between runs and are updated in place, so
@@ -162,7 +162,7 @@ EOF
 share_builds() {
     sb_dir=$1
     sb_key=$( (echo "${CC:-cc} ${CFLAGS:-}"
-        cd "$root" && find common tests -maxdepth 1 -type f | LC_ALL=C sort | xargs cksum) |
+        cd "$root" && find common tests tests/lib -maxdepth 1 -type f | LC_ALL=C sort | xargs cksum) |
         cksum | awk '{ print $1 }')
     sb_shared=$out/shared/$sb_key
     mkdir -p "$sb_shared/common" "$sb_shared/support" "$sb_dir/build/tests"

@@ -61,7 +61,7 @@ resolve_stage() {
 }
 
 # test_from FILE - the first stage a stage test applies to: 05 for
-# 05_bvh.c and for 05-06_speed.c (tests/select-tests.sh).
+# 05_bvh.c and for 05-06_speed.c (tests/harness/select-tests.sh).
 test_from() {
     tf_b=$(basename "$1")
     tf_b=${tf_b%%_*}
@@ -152,7 +152,7 @@ build_errors() {
 # "passed failed skipped status note".
 # A program that crashes, times out or prints no result line counts every
 # TEST() of its source as failed; one that prints a result line but exits
-# non-zero counts one more failure (as tests/run-tests.sh does).
+# non-zero counts one more failure (as tests/harness/run-tests.sh does).
 run_handout_test() {
     rt_dir=$1
     rt_src=$2

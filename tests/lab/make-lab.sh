@@ -115,7 +115,7 @@ write_tests() {
             esac
         fi
     done
-    for wt_f in $(cd "$wt_t" && sh ./select-tests.sh "$nn" stage/*.c); do
+    for wt_f in $(cd "$wt_t" && sh ./harness/select-tests.sh "$nn" stage/*.c); do
         cp "$wt_t/$wt_f" "$tmp/tests/$wt_f"
     done
 }

@@ -245,8 +245,8 @@ test_diffstat() {
 mini_project() {
     M=$T/mini
     mkdir -p "$M/stages/01_a" "$M/stages/02_b" "$M/common" "$M/tests/stage" "$M/tests/common" \
-        "$M/tests/reference" "$M/scenes" "$M/docs/stages" "$M/docs/images"
-    cp "$LAB_DIR/../select-tests.sh" "$M/tests/select-tests.sh"
+        "$M/tests/harness" "$M/tests/lib" "$M/tests/reference" "$M/scenes" "$M/docs/stages" "$M/docs/images"
+    cp "$LAB_DIR/../harness/select-tests.sh" "$M/tests/harness/select-tests.sh"
     printf 'SRCS = main.c\n' >"$M/stages/01_a/Makefile"
     printf 'int main(void) { return 0; }\n' >"$M/stages/01_a/main.c"
     printf 'SRCS = main.c\n' >"$M/stages/02_b/Makefile"
@@ -264,7 +264,7 @@ int main(void) { return answer(); }
 EOF
     printf '/* common */\n' >"$M/common/x.h"
     printf 'all:\n' >"$M/tests/Makefile"
-    printf '/* harness */\n' >"$M/tests/check.h"
+    printf '/* harness */\n' >"$M/tests/lib/check.h"
     for f in 01_a 02_b 01-01_only 02-03_range 03_future; do
         printf 'TEST(one) {}\nTEST(two) {}\n' >"$M/tests/stage/$f.c"
     done
@@ -306,9 +306,9 @@ scenes/s.scene
 stages/02_b/Makefile
 stages/02_b/main.c
 tests/Makefile
-tests/check.h
+tests/harness/select-tests.sh
+tests/lib/check.h
 tests/reference/r.pfm
-tests/select-tests.sh
 tests/stage/01_a.c
 tests/stage/02-03_range.c
 tests/stage/02_b.c

@@ -2,7 +2,7 @@
 # report.sh - turn the sweep's trade.csv into settings.csv, the SVG plots and
 # README.md, all in the output directory (docs/trade, or build/trade/quick
 # with QUICK=1; TRADE_OUT overrides).  Plots are drawn by plotcsv
-# (tests/plotcsv.c) from small CSVs that awk cuts out of settings.csv.
+# (tests/tools/plotcsv.c) from small CSVs that awk cuts out of settings.csv.
 #
 #   tests/trade/report.sh
 set -euo pipefail
@@ -20,7 +20,7 @@ else
     MODE=full
 fi
 OUT=${OUT#"$PWD"/}
-PLOTCSV=${BUILD}tests/tools/plotcsv
+PLOTCSV=${BUILD}tools/plotcsv
 TMP=${BUILD}trade/report-$MODE
 HERE=tests/trade
 CSV=$OUT/trade.csv

@@ -48,7 +48,7 @@ else
 fi
 OUT=${OUT#"$PWD"/}
 WORK=${BUILD}trade/work-$MODE
-IMGCMP=${BUILD}tests/tools/imgcmp
+IMGCMP=${BUILD}tools/imgcmp
 PFMBOX=${BUILD}trade/bin/pfmbox
 THREADS=2
 REF_DIR=tests/reference

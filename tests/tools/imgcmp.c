@@ -3,7 +3,7 @@
  *
  *     imgcmp [--mask smooth] [--csv | --json] RENDER.pfm REFERENCE.pfm
  *
- * Prints the metrics of tests/metrics.h (relMSE, RMSE, MAE, frac5, the
+ * Prints the metrics of tests/lib/metrics.h (relMSE, RMSE, MAE, frac5, the
  * means of both images, pixel counts).  Exit status: 0 when the images were
  * compared, 1 when a file cannot be read or the sizes differ, 2 on bad
  * usage.
