@@ -1,0 +1,248 @@
+/*
+ * scene_build.c - the builders of the statements that add one element: the
+ * camera, the image size, background and ambient, spheres, quads, single
+ * triangles and the lights.  Each checks what the field table cannot (a
+ * camera's up not along its view, a light of non-zero area), appends to the
+ * scene through grow() and records the features the element uses.
+ */
+#include "scene_parser.h"
+
+#include <limits.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+/* Below this sine of the angle between up and the view direction the
+ * camera's basis (built from their cross product) is numerically noise. */
+#define MIN_UP_SINE 1e-6
+
+void
+use_feature(struct parser *p, enum feature f, const struct token *kw)
+{
+    if (!(p->scene->features & FEATURE_BIT(f))) {
+        p->scene->features |= FEATURE_BIT(f);
+        p->scene->feature_loc[f] = loc_of(kw);
+    }
+}
+
+/* Room for `need` items in an array of capacity *cap: the (possibly moved)
+ * array, or NULL with the diag set (the old array is still owned by the
+ * scene).  A statement adds one item, and a 64 MiB file holds far fewer
+ * than INT_MAX statements; meshes check their counts before they come. */
+void *
+grow(struct parser *p, const struct token *at, void *items, int need, int *cap, size_t size)
+{
+    if (need <= *cap) {
+        return items;
+    }
+    int new_cap = *cap < 16 ? 16 : *cap;
+    while (new_cap < need) {
+        new_cap = new_cap > INT_MAX / 2 ? INT_MAX : new_cap * 2;
+    }
+    void *grown = NULL;
+    if ((size_t)new_cap <= SIZE_MAX / size) {
+        grown = realloc(items, (size_t)new_cap * size);
+    }
+    if (!grown) {
+        fail(p, at, "out of memory");
+        return NULL;
+    }
+    *cap = new_cap;
+    return grown;
+}
+
+/* Sine of the angle between non-zero a and b, each first divided by its
+ * largest component so that no product overflows; NaN if one is infinite. */
+static double
+sine_between(const double a_in[3], const double b_in[3])
+{
+    double a[3], b[3];
+    double ma = fmax(fabs(a_in[0]), fmax(fabs(a_in[1]), fabs(a_in[2])));
+    double mb = fmax(fabs(b_in[0]), fmax(fabs(b_in[1]), fabs(b_in[2])));
+    for (int i = 0; i < 3; i++) {
+        a[i] = a_in[i] / ma;
+        b[i] = b_in[i] / mb;
+    }
+    double cx = a[1] * b[2] - a[2] * b[1];
+    double cy = a[2] * b[0] - a[0] * b[2];
+    double cz = a[0] * b[1] - a[1] * b[0];
+    double la = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    double lb = sqrt(b[0] * b[0] + b[1] * b[1] + b[2] * b[2]);
+    return sqrt(cx * cx + cy * cy + cz * cz) / (la * lb);
+}
+
+bool
+build_camera(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    (void)kw;
+    vec3 o = vec_of(fs, "origin");
+    vec3 t = vec_of(fs, "target");
+    vec3 up = vec_of(fs, "up");
+    if (o.x == t.x && o.y == t.y && o.z == t.z) {
+        return fail(p, &get(fs, "target")->key, "target must differ from origin");
+    }
+    if (vec3_is_zero(up)) {
+        return fail(p, &get(fs, "up")->key, "up must be non-zero");
+    }
+    // In double, where the difference of two reals cannot overflow.
+    double view[3] = {(double)t.x - o.x, (double)t.y - o.y, (double)t.z - o.z};
+    double up_d[3] = {up.x, up.y, up.z};
+    if (!(sine_between(view, up_d) >= MIN_UP_SINE)) {
+        const char *msg = "up must not be parallel to the view direction (target - origin)";
+        return fail(p, &get(fs, "up")->key, "%s", msg);
+    }
+    real fov = get(fs, "fov")->num[0];
+    p->scene->camera = (struct camera_desc){.origin = o, .target = t, .up = up, .vfov_deg = fov};
+    return true;
+}
+
+bool
+build_image(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    (void)kw;
+    p->scene->width = (int)get(fs, "width")->integer;
+    p->scene->height = (int)get(fs, "height")->integer;
+    return true;
+}
+
+/* background and ambient: a colour, and a feature when it is not black. */
+bool
+build_color(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    bool background = token_is(kw, "background");
+    vec3 color = vec_of(fs, "color");
+    *(background ? &p->scene->background : &p->scene->ambient) = color;
+    if (!vec3_is_zero(color)) {
+        use_feature(p, background ? FEAT_ENVIRONMENT : FEAT_AMBIENT, kw);
+    }
+    return true;
+}
+
+bool
+build_sphere(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    struct scene *s = p->scene;
+    int material;
+    if (!use_material(p, kw, fs, &material)) {
+        return false;
+    }
+    struct sphere *a = grow(p, kw, s->spheres, s->n_spheres + 1, &p->cap.spheres, sizeof *a);
+    if (!a) {
+        return false;
+    }
+    s->spheres = a;
+    real radius = get(fs, "radius")->num[0];
+    a[s->n_spheres++] =
+        (struct sphere){.center = vec_of(fs, "center"), .radius = radius, .material = material};
+    return true;
+}
+
+/* A quad of zero area is allowed: it is never hit. */
+bool
+build_quad(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    struct scene *s = p->scene;
+    int material;
+    if (!use_material(p, kw, fs, &material)) {
+        return false;
+    }
+    struct quad *a = grow(p, kw, s->quads, s->n_quads + 1, &p->cap.quads, sizeof *a);
+    if (!a) {
+        return false;
+    }
+    s->quads = a;
+    struct quad *q = &a[s->n_quads++];
+    *q = (struct quad){.corner = vec_of(fs, "corner"), .material = material};
+    q->edge1 = vec_of(fs, "edge1");
+    q->edge2 = vec_of(fs, "edge2");
+    return true;
+}
+
+/* Room for n more vertices and m more triangles. */
+bool
+room_for_mesh(struct parser *p, const struct token *at, size_t n, size_t m)
+{
+    struct scene *s = p->scene;
+    if (n > (size_t)(INT_MAX - s->n_vertices) || m > (size_t)(INT_MAX - s->n_triangles)) {
+        return fail(p, at, "too many vertices or triangles in the scene (at most %d)", INT_MAX);
+    }
+    vec3 *pos = grow(p, at, s->positions, s->n_vertices + (int)n, &p->cap.positions, sizeof *pos);
+    if (!pos) {
+        return false;
+    }
+    s->positions = pos;
+    vec3 *nrm = grow(p, at, s->normals, s->n_vertices + (int)n, &p->cap.normals, sizeof *nrm);
+    if (!nrm) {
+        return false;
+    }
+    s->normals = nrm;
+    int triangles = s->n_triangles + (int)m;
+    struct triangle *tri = grow(p, at, s->triangles, triangles, &p->cap.triangles, sizeof *tri);
+    if (!tri) {
+        return false;
+    }
+    s->triangles = tri;
+    return true;
+}
+
+/* A triangle of zero area is allowed, as in meshes: it is never hit. */
+bool
+build_triangle(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    struct scene *s = p->scene;
+    int material;
+    if (!use_material(p, kw, fs, &material) || !room_for_mesh(p, kw, 3, 1)) {
+        return false;
+    }
+    static const char *const corners[] = {"v0", "v1", "v2"};
+    struct triangle tri = {.material = material, .smooth = false};
+    for (int i = 0; i < 3; i++) {
+        tri.v[i] = s->n_vertices;
+        s->positions[s->n_vertices] = vec_of(fs, corners[i]);
+        s->normals[s->n_vertices++] = vec3_splat(0);
+    }
+    s->triangles[s->n_triangles++] = tri;
+    return true;
+}
+
+bool
+build_point_light(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    struct scene *s = p->scene;
+    int n = s->n_point_lights;
+    struct point_light *a = grow(p, kw, s->point_lights, n + 1, &p->cap.points, sizeof *a);
+    if (!a) {
+        return false;
+    }
+    s->point_lights = a;
+    a[s->n_point_lights++] = (struct point_light){
+        .position = vec_of(fs, "position"),
+        .intensity = vec_of(fs, "intensity")};
+    use_feature(p, FEAT_POINT_LIGHT, kw);
+    return true;
+}
+
+bool
+build_area_light(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    struct scene *s = p->scene;
+    struct area_light light = {.corner = vec_of(fs, "corner"), .loc = loc_of(kw)};
+    light.edge1 = vec_of(fs, "edge1");
+    light.edge2 = vec_of(fs, "edge2");
+    light.radiance = vec_of(fs, "radiance");
+    real area = area_light_area(&light);
+    if (!isfinite(area)) {
+        return fail(p, kw, "area_light is too large (its area is not a finite number)");
+    }
+    if (!(area > 0)) {
+        return fail(p, kw, "area_light has zero area (edge1 and edge2 are parallel or zero)");
+    }
+    int n = s->n_area_lights;
+    struct area_light *a = grow(p, kw, s->area_lights, n + 1, &p->cap.areas, sizeof *a);
+    if (!a) {
+        return false;
+    }
+    s->area_lights = a;
+    a[s->n_area_lights++] = light;
+    use_feature(p, FEAT_AREA_LIGHT, kw);
+    return true;
+}

@@ -1,0 +1,212 @@
+/*
+ * scene_mesh.c - the `mesh` statement: its transform (scale, then rotate,
+ * then translate), the file name resolved against the scene's directory, the
+ * glTF loader behind gltf.h, and the vertices and triangles appended to the
+ * scene's one shared triangle list.
+ */
+#include "scene_parser.h"
+
+#include <errno.h>
+#include <string.h>
+
+#include "gltf.h"
+
+#define MAX_PATH_CHARS 4096 /* a mesh path: the scene's directory and the file name */
+#define DEG_TO_RAD (3.14159265358979323846 / 180.0)
+
+/* A mesh's placement: p' = R (S p) + T, and for normals the inverse
+ * transpose of R S, which is R S^-1 since R is a rotation. */
+struct transform {
+    double scale[3];
+    double rotation[3][3];
+    double offset[3];
+};
+
+/* Rodrigues' formula: counter-clockwise when the axis points at the viewer. */
+static void
+rotation(const double axis[3], double degrees, double r[3][3])
+{
+    double len = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+    double x = axis[0] / len, y = axis[1] / len, z = axis[2] / len;
+    double c = cos(degrees * DEG_TO_RAD), s = sin(degrees * DEG_TO_RAD), t = 1 - c;
+    double m[3][3] = {
+        {t * x * x + c, t * x * y - s * z, t * x * z + s * y},
+        {t * x * y + s * z, t * y * y + c, t * y * z - s * x},
+        {t * x * z - s * y, t * y * z + s * x, t * z * z + c},
+    };
+    memcpy(r, m, sizeof m);
+}
+
+static bool
+make_transform(struct parser *p, const struct fields *fs, struct transform *xf)
+{
+    *xf = (struct transform){.scale = {1, 1, 1}, .rotation = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    const struct field_value *scale = get(fs, "scale");
+    const struct field_value *rotate = get(fs, "rotate");
+    const struct field_value *translate = get(fs, "translate");
+    for (int i = 0; i < 3; i++) {
+        xf->scale[i] = scale ? scale->num[scale->n == 1 ? 0 : i] : 1;
+        xf->offset[i] = translate ? translate->num[i] : 0;
+    }
+    if (rotate) {
+        double axis[3] = {rotate->num[0], rotate->num[1], rotate->num[2]};
+        double len = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
+        if (!(len > 0) || !isfinite(len)) {
+            return fail(p, &rotate->key, "rotate axis must be non-zero");
+        }
+        rotation(axis, rotate->num[3], xf->rotation);
+    }
+    return true;
+}
+
+/* R v + offset as a vec3; false when a component is not a finite real. */
+static bool
+rotate_into(const struct transform *xf, const double v[3], const double offset[3], vec3 *out)
+{
+    double w[3];
+    for (int i = 0; i < 3; i++) {
+        const double *row = xf->rotation[i];
+        w[i] = row[0] * v[0] + row[1] * v[1] + row[2] * v[2] + offset[i];
+        if (!(fabs(w[i]) <= REAL_MAX)) {  // false for NaN too
+            return false;
+        }
+    }
+    *out = vec3_make((real)w[0], (real)w[1], (real)w[2]);
+    return true;
+}
+
+static bool
+transform_vertex(
+    const struct transform *xf,
+    const struct gltf_mesh *mesh,
+    size_t i,
+    vec3 *pos,
+    vec3 *normal)
+{
+    static const double no_offset[3] = {0, 0, 0};
+    double v[3], n[3];
+    for (int k = 0; k < 3; k++) {
+        v[k] = mesh->positions[3 * i + (size_t)k] * xf->scale[k];
+        n[k] = mesh->normals ? mesh->normals[3 * i + (size_t)k] / xf->scale[k] : 0;
+    }
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3 && len > 0; k++) {
+        n[k] /= len;  // a zero normal (none given) stays zero
+    }
+    return rotate_into(xf, v, xf->offset, pos) && rotate_into(xf, n, no_offset, normal);
+}
+
+static bool
+append_mesh(
+    struct parser *p,
+    const struct token *at,
+    const struct gltf_mesh *mesh,
+    const struct transform *xf,
+    int material)
+{
+    struct scene *s = p->scene;
+    if (!room_for_mesh(p, at, mesh->n_vertices, mesh->n_triangles)) {
+        return false;
+    }
+    for (size_t i = 0; i < mesh->n_vertices; i++) {
+        size_t v = (size_t)s->n_vertices + i;
+        if (!transform_vertex(xf, mesh, i, &s->positions[v], &s->normals[v])) {
+            return fail(p, at, "mesh vertex %zu is not finite once transformed", i);
+        }
+    }
+    for (size_t i = 0; i < mesh->n_triangles; i++) {
+        struct triangle tri = {.material = material, .smooth = mesh->normals != NULL};
+        for (int k = 0; k < 3; k++) {
+            unsigned index = mesh->indices[3 * i + (size_t)k];
+            if (index >= mesh->n_vertices) {
+                return fail(
+                    p,
+                    at,
+                    "mesh triangle %zu uses vertex %u of %zu",
+                    i,
+                    index,
+                    mesh->n_vertices);
+            }
+            tri.v[k] = s->n_vertices + (int)index;
+            // Interpolating a missing (zero) vertex normal would give no normal.
+            tri.smooth = tri.smooth && !vec3_is_zero(s->normals[tri.v[k]]);
+        }
+        s->triangles[s->n_triangles + (int)i] = tri;
+    }
+    s->n_vertices += (int)mesh->n_vertices;
+    s->n_triangles += (int)mesh->n_triangles;
+    return true;
+}
+
+/* The file token's text (quotes and escapes removed) into name, and the
+ * path to open (relative to the scene file's directory) into path. */
+static bool
+mesh_path(struct parser *p, const struct token *t, char *name, char *path)
+{
+    size_t n = 0;
+    size_t quoted = t->kind == TOK_STRING;
+    for (size_t i = quoted; i < t->len - quoted && n < MAX_PATH_CHARS - 1; i++) {
+        bool escape = quoted && t->text[i] == '\\';
+        i += escape && (t->text[i + 1] == '"' || t->text[i + 1] == '\\');
+        name[n++] = t->text[i];
+    }
+    name[n] = '\0';
+    if (n == 0) {
+        return fail(p, t, "expected a file name after 'file', got an empty string");
+    }
+    const char *slash = strrchr(p->name, '/');
+    int dir = name[0] == '/' || !slash ? 0 : (int)(slash - p->name + 1);
+    if (n >= MAX_PATH_CHARS - 1 || (size_t)dir + n >= MAX_PATH_CHARS) {
+        return fail(p, t, "mesh path too long (at most %d bytes)", MAX_PATH_CHARS - 1);
+    }
+    memcpy(path, p->name, (size_t)dir);
+    memcpy(path + dir, name, n + 1);
+    return true;
+}
+
+static bool
+load_mesh(
+    struct parser *p,
+    const struct token *t,
+    const char *name,
+    const char *path,
+    struct gltf_mesh *out)
+{
+    // Opened here first, so that a missing file reads the same with or without glTF.
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        return fail(p, t, "cannot load mesh '%s': cannot open: %s", name, strerror(errno));
+    }
+    fclose(f);
+    if (!gltf_available()) {
+        const char *how = "this build has no glTF support: install libtinygltf-dev and rebuild";
+        return fail(p, t, "cannot load mesh '%s': %s", name, how);
+    }
+    struct diag gerr = {.line = 0};
+    if (!gltf_load(path, out, &gerr)) {
+        return fail(p, t, "cannot load mesh '%s': %s", name, gerr.msg);
+    }
+    return true;
+}
+
+bool
+build_mesh(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    int material;
+    struct transform xf;
+    if (!use_material(p, kw, fs, &material) || !make_transform(p, fs, &xf)) {
+        return false;
+    }
+    const struct token *file = &get(fs, "file")->val[0];
+    char name[MAX_PATH_CHARS], path[MAX_PATH_CHARS];
+    struct gltf_mesh mesh = {.n_vertices = 0};
+    if (!mesh_path(p, file, name, path) || !load_mesh(p, file, name, path, &mesh)) {
+        return false;
+    }
+    bool ok = append_mesh(p, file, &mesh, &xf, material);
+    gltf_free(&mesh);
+    if (ok) {
+        use_feature(p, FEAT_MESH, kw);
+    }
+    return ok;
+}
