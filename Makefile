@@ -4,6 +4,7 @@
 #                   and the tools (build/tools/: imgcmp, plotcsv, gen_meshes)
 #   make test       every test of common/ and of every stage; last line "N passed, N failed"
 #   make sanitize   the same tests built with AddressSanitizer + UBSan (build/sanitize/)
+#   make fuzz       every parser under libFuzzer for FUZZ_SECONDS (60) each (clang)
 #   make demo       render the showcase scenes through the stages into out/
 #   make config     what the build found (OpenEXR, tinygltf)
 #   make lab STAGE=05 OUT=dir   a lab handout; make grade LAB=dir grades one
@@ -41,11 +42,17 @@ test: all
 	@tests/lab/test-lab-tools.sh 2>&1 | tee $(LOGS)/lab-tools.log
 	@tests/lab/check-diffs.sh 2>&1 | tee $(LOGS)/diffs.log
 	@tests/lab/check-labs.sh --quick 2>&1 | tee $(LOGS)/labs.log
+	@$(MAKE) --no-print-directory -C tests/fuzz replay 2>&1 | tee $(LOGS)/fuzz-replay.log
 	@tests/harness/sum-results.sh $(LOGS)/common.log $(foreach s,$(STAGES),$(LOGS)/$(s).log) \
-		$(LOGS)/lab-tools.log $(LOGS)/diffs.log $(LOGS)/labs.log
+		$(LOGS)/lab-tools.log $(LOGS)/diffs.log $(LOGS)/labs.log $(LOGS)/fuzz-replay.log
 
 sanitize:
 	@$(MAKE) --no-print-directory SANITIZE=1 test
+
+# Coverage-guided fuzzing of the scene, glTF, PFM and command-line parsers
+# (tests/fuzz, docs/robustness.md); needs clang.  FUZZ_SECONDS per harness.
+fuzz: common
+	@$(MAKE) --no-print-directory -C tests/fuzz fuzz
 
 config:
 	@echo "compiler:  $(CC) ($(REAL) precision)"
@@ -101,4 +108,4 @@ check-labs: all
 clean:
 	rm -rf build
 
-.PHONY: all common tools test sanitize config demo trade bench docs-images clean lab grade diffs branches check-labs $(STAGES)
+.PHONY: all common tools test sanitize fuzz config demo trade bench docs-images clean lab grade diffs branches check-labs $(STAGES)

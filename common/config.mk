@@ -5,6 +5,8 @@
 #   CC CXX CFLAGS CXXFLAGS CPPFLAGS LDFLAGS LDLIBS
 #   REAL=float      single-precision build (outputs in build/float/)
 #   SANITIZE=1      AddressSanitizer + UBSan (outputs in build/sanitize/)
+#   FUZZ=1          clang's libFuzzer instrumentation + ASan + UBSan, for the
+#                   harnesses of tests/fuzz (outputs in build/fuzz/; CC=clang)
 #   WERROR=1        warnings are errors
 #   OPENEXR=0|1     override the pkg-config detection of OpenEXR
 #   TINYGLTF=0|1    override the detection of tinygltf (glTF meshes)
@@ -39,6 +41,15 @@ SAN_FLAGS :=
 ifeq ($(SANITIZE),1)
 SAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 VARIANT := $(VARIANT)sanitize/
+endif
+
+# Coverage-guided fuzzing (make fuzz, tests/fuzz/Makefile): every object is
+# instrumented for libFuzzer; only the harnesses link its main.
+FUZZ ?= 0
+ifeq ($(FUZZ),1)
+SAN_FLAGS := -O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer \
+             -fno-sanitize-recover=undefined
+VARIANT := $(VARIANT)fuzz/
 endif
 
 BUILDROOT := $(ROOT)/build/$(VARIANT)

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# run-fuzz.sh NAME BINARY SECONDS OUT SEED_DIR... - run one libFuzzer harness.
+#
+# Runs BINARY for SECONDS of wall-clock time on its corpus OUT/corpus/NAME
+# (kept between runs) plus the seed directories, with a memory limit
+# ($FUZZ_RSS_MB, also the largest single allocation) and a hang limit
+# ($FUZZ_TIMEOUT seconds per input) and the dictionary $FUZZ_DICT if set.
+# A crash, leak, hang, out-of-memory or UBSan report fails it: the input is minimised into
+# OUT/artifacts/NAME/minimized-* and the way to replay it is printed.
+# Writes one summary line to OUT/logs/NAME.summary.
+set -u
+name=$1 bin=$2 seconds=$3 out=$4
+shift 4
+corpus=$out/corpus/$name
+artifacts=$out/artifacts/$name
+log=$out/logs/$name.log
+summary=$out/logs/$name.summary
+scratch=$out/tmp/$name
+rm -rf "$artifacts" "$scratch"
+mkdir -p "$corpus" "$artifacts" "$scratch" "$out/logs"
+seeds=()
+for d in "$@"; do
+    [ -d "$d" ] && seeds+=("$d")
+done
+dict=()
+[ -n "${FUZZ_DICT:-}" ] && dict=(-dict="$FUZZ_DICT")
+TIMEFORMAT='%U %S'
+{ time TMPDIR=$scratch "$bin" -max_total_time="$seconds" -rss_limit_mb="${FUZZ_RSS_MB:-2048}" \
+    -malloc_limit_mb="${FUZZ_RSS_MB:-2048}" -timeout="${FUZZ_TIMEOUT:-10}" \
+    -artifact_prefix="$artifacts/" "${dict[@]}" -print_final_stats=1 "$corpus" "${seeds[@]}" \
+    >"$log" 2>&1; } 2>"$scratch.time"
+status=$?
+cpu=$(awk '{printf "%.1f", $1 + $2}' "$scratch.time")
+rm -rf "$scratch" "$scratch.time"
+runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
+rss=$(sed -n 's/^stat::peak_rss_mb: *//p' "$log" | tail -n 1)
+last=$(grep -E '^#[0-9]+.*cov: ' "$log" | tail -n 1)
+cov=$(echo "$last" | sed -nE 's/.*cov: ([0-9]+).*/\1/p')
+ft=$(echo "$last" | sed -nE 's/.*ft: ([0-9]+).*/\1/p')
+files=$(find "$corpus" -type f | wc -l)
+figures="${runs:-?} runs in ${seconds} s (CPU ${cpu} s), cov ${cov:-?} edges, ft ${ft:-?}, corpus ${files} files, peak RSS ${rss:-?} MB"
+if [ "$status" -eq 0 ] && ! grep -q 'runtime error:' "$log"; then
+    echo "ok   fuzz $name: $figures" >"$summary"
+    exit 0
+fi
+artifact=$(find "$artifacts" -type f | head -n 1)
+kind=$(grep -m1 -oE 'ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer|UndefinedBehaviorSanitizer): [a-z-]+|runtime error: .*|broken promise: .*' "$log")
+{
+    echo "FAIL fuzz $name: ${kind:-exit $status} (log: $log)"
+    if [ -n "$artifact" ]; then
+        small=$artifacts/minimized-$(basename "$artifact")
+        "$bin" -minimize_crash=1 -max_total_time=60 -timeout="${FUZZ_TIMEOUT:-10}" \
+            -rss_limit_mb="${FUZZ_RSS_MB:-2048}" -exact_artifact_path="$small" "$artifact" \
+            >"$log.minimize" 2>&1
+        [ -f "$small" ] || small=$artifact
+        echo "    reproducer: $small"
+        echo "    replay it:  build/tests/fuzz/replay --run $name $small"
+        echo "    once fixed: cp it to tests/fuzz/regressions/$name/ (make test replays it)"
+    fi
+} >"$summary"
+exit 1
