@@ -108,7 +108,9 @@ render_tile(struct pass_state *ps, int tile, struct stats *st)
         for (int x = x0; x < x1; x++) {
             uint64_t index = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
             struct rng rng = rng_for_pixel(job->seed, index, (uint64_t)ps->pass);
-            ps->values[index] = job->pixel(job->ctx, x, y, &rng, st);
+            ps->values[index] = job->pass_pixel
+                                    ? job->pass_pixel(job->ctx, x, y, ps->pass, &rng, st)
+                                    : job->pixel(job->ctx, x, y, &rng, st);
         }
     }
 }

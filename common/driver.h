@@ -25,6 +25,12 @@
 /* Radiance estimate for pixel (px, py) (0,0 top-left) in one pass. */
 typedef vec3 (*pixel_fn)(const void *ctx, int px, int py, struct rng *rng, struct stats *st);
 
+/* The same for a stage that samples progressively, told which pass (0, 1,
+ * ...) it is in, so the samples of different passes can go to different
+ * places in the pixel. */
+typedef vec3 (
+    *pass_pixel_fn)(const void *ctx, int px, int py, int pass, struct rng *rng, struct stats *st);
+
 struct render_job {
     int width, height;
     int threads; /* >= 1 */
@@ -32,7 +38,8 @@ struct render_job {
     double time_limit; /* seconds; stop starting passes after this (0: none) */
     uint64_t seed;
     bool progress; /* draw a progress bar on stderr */
-    pixel_fn pixel;
+    pixel_fn pixel; /* exactly one of pixel and pass_pixel is set */
+    pass_pixel_fn pass_pixel;
     const void *ctx;
 };
 
@@ -41,8 +48,8 @@ struct render_result {
     bool interrupted; /* stopped early by render_request_stop() */
     uint64_t nan_pixels; /* pixels with a NaN or Inf estimate in any pass */
     struct stats counts; /* summed over threads */
-    double seconds;      /* wall-clock time */
-    double cpu_seconds;  /* processor time of all threads (steadier on a busy machine) */
+    double seconds; /* wall-clock time */
+    double cpu_seconds; /* processor time of all threads (steadier on a busy machine) */
 };
 
 /* Render into out (allocated here).  Returns false only when memory or

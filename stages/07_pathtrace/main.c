@@ -205,15 +205,15 @@ render_and_write(
         .time_limit = renderer->time_limit,
         .seed = opt->seed,
         .progress = !opt->quiet && isatty(STDERR_FILENO),
-        .pixel = render_pixel,
+        .pass_pixel = render_pixel,
         .ctx = renderer,
     };
     /* Progressive: the image is built in passes of a few samples per pixel,
-     * each placed by the --aa pattern, so it can be stopped (Ctrl-C,
+     * placed together by the --aa pattern (render.c), so it can be stopped (Ctrl-C,
      * --time) after any pass. */
-    int per_pass = samples_per_pass(renderer->spp);
-    job.passes = renderer->spp / per_pass;
-    renderer->spp = per_pass;
+    renderer->spp_pass = samples_per_pass(renderer->spp);
+    renderer->seed = opt->seed;
+    job.passes = renderer->spp / renderer->spp_pass;
     image_size(scene, opt, &job.width, &job.height);
     renderer->camera = camera_make(&scene->camera, job.width, job.height);
     struct image image = {0};
@@ -234,7 +234,7 @@ render_and_write(
             "interrupted: writing the image after %d complete passes\n",
             result.passes_done);
     }
-    fill_report(rep, opt, &job, &result, renderer->spp);
+    fill_report(rep, opt, &job, &result, renderer->spp_pass);
     int status = write_outputs(&image, output, opt, rep, start);
     image_free(&image);
     return status;

@@ -202,25 +202,64 @@ luminance(vec3 c)
     return (real)0.2126 * c.x + (real)0.7152 * c.y + (real)0.0722 * c.z;
 }
 
-/* The sum of n samples of pixel (px, py); widens [*lum_min, *lum_max] to
- * the range of their luminances. */
+/* Place i (0 <= i < n) takes in a random order of 0 .. n-1 chosen by key.
+ * Steps that are invertible on b bits, 2^b >= n (xor with the key,
+ * multiplication by an odd number, xor with a right shift of itself),
+ * permute 0 .. 2^b - 1; a result past n is permuted again until it falls
+ * below n (cycle walking, Black and Rogaway, "Ciphers with Arbitrary Finite
+ * Domains", 2002; Kensler, "Correlated Multi-Jittered Sampling", 2013).  A
+ * rotation by an offset from the key ends it, so that every place is
+ * exactly equally likely for every i. */
+static int
+shuffled_index(int i, int n, uint64_t key)
+{
+    uint32_t mask = (uint32_t)n - 1;
+    int bits = 0;
+    for (int s = 1; s < 32; s *= 2) {
+        mask |= mask >> s;
+    }
+    for (uint32_t m = mask; m; m >>= 1) {
+        bits++;
+    }
+    int shift = bits / 2 > 0 ? bits / 2 : 1;
+    uint32_t x = (uint32_t)i;
+    do {
+        for (int round = 0; round < 4; round++) {
+            x = (x ^ (uint32_t)(key >> (16 * round))) & mask;
+            x = (x * 0x9e3779b1u) & mask; /* odd: invertible modulo 2^b */
+            x ^= x >> shift;
+        }
+    } while (x >= (uint32_t)n);
+    uint32_t offset = (uint32_t)(rng_mix64(key) % (uint64_t)n);
+    return (int)((x + offset) % (uint32_t)n);
+}
+
+/* The sum of samples first .. first + count - 1 of the spp of pixel
+ * (px, py); widens [*lum_min, *lum_max] to the range of their luminances.
+ * Sample i goes to cell shuffled_index(i) of the pattern's grid of spp
+ * cells: the passes together fill every cell once, and the cells of any
+ * one pass are spread over the whole pixel, so a render stopped after a
+ * few passes is not biased towards part of the pixel. */
 static vec3
 sum_samples(
     const struct renderer *renderer,
     int px,
     int py,
     int pattern,
-    int n,
+    int first,
+    int count,
     struct rng *rng,
     struct stats *st,
     real *lum_min,
     real *lum_max)
 {
+    uint64_t key = rng_mix64(renderer->seed ^ rng_mix64(((uint64_t)py << 32) | (uint32_t)px));
     vec3 sum = vec3_splat(0);
-    for (int i = 0; i < n; i++) {
+    for (int i = first; i < first + count; i++) {
         real dx;
         real dy;
-        sample_position(pattern, i, n, rng, &dx, &dy);
+        int cell = shuffled_index(i, renderer->spp, key);
+        sample_position(pattern, cell, renderer->spp, rng, &dx, &dy);
         ray primary = camera_ray(&renderer->camera, (real)px + dx, (real)py + dy);
         st->rays_camera++;
         vec3 l = trace(renderer, primary, 1, rng, st);
@@ -233,40 +272,53 @@ sum_samples(
 
 /* Adaptive supersampling (Whitted 1980, Mitchell 1987): a few probe samples;
  * where their contrast (max - min) / (max + min) exceeds the threshold - an
- * edge, a shadow boundary, a texture - the pixel gets all spp samples. */
+ * edge, a shadow boundary, a texture - the pixel gets all spp samples
+ * (here: all spp_pass of this pass). */
 static vec3
-adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng, struct stats *st)
+adaptive_pixel(
+    const struct renderer *renderer,
+    int px,
+    int py,
+    int first,
+    struct rng *rng,
+    struct stats *st)
 {
     /* LAB 06: a few probe samples; all spp only where their contrast exceeds the
      * threshold (docs/stages/06_supersample.md#lab)
      * stub: real lo = REAL_MAX;
      * real hi = -REAL_MAX;
-     * vec3 sum = sum_samples(renderer, px, py, AA_JITTER, renderer->spp, rng, st, &lo, &hi);
-     * return vec3_scale(sum, 1 / (real)renderer->spp); */
+     * int n = renderer->spp_pass;
+     * vec3 sum = sum_samples(renderer, px, py, AA_JITTER, first, n, rng, st, &lo, &hi);
+     * return vec3_scale(sum, 1 / (real)n); */
     real lo = REAL_MAX;
     real hi = -REAL_MAX;
-    int probes = renderer->spp < 4 ? renderer->spp : 4;
-    vec3 sum = sum_samples(renderer, px, py, AA_JITTER, probes, rng, st, &lo, &hi);
+    int n = renderer->spp_pass;
+    int probes = n < 4 ? n : 4;
+    vec3 sum = sum_samples(renderer, px, py, AA_JITTER, first, probes, rng, st, &lo, &hi);
     bool agree = !(hi - lo > renderer->aa_threshold * (hi + lo));
-    if (agree || probes == renderer->spp) {
+    if (agree || probes == n) {
         return vec3_scale(sum, 1 / (real)probes);
     }
     st->extra[STAT_AA_REFINED]++;
-    int rest = renderer->spp - probes;
-    sum = vec3_add(sum, sum_samples(renderer, px, py, AA_JITTER, rest, rng, st, &lo, &hi));
-    return vec3_scale(sum, 1 / (real)renderer->spp);
+    int rest = n - probes;
+    sum = vec3_add(
+        sum,
+        sum_samples(renderer, px, py, AA_JITTER, first + probes, rest, rng, st, &lo, &hi));
+    return vec3_scale(sum, 1 / (real)n);
     /* END LAB */
 }
 
 vec3
-render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+render_pixel(const void *ctx, int px, int py, int pass, struct rng *rng, struct stats *st)
 {
     const struct renderer *renderer = ctx;
+    int first = pass * renderer->spp_pass;
     if (renderer->aa == AA_ADAPTIVE) {
-        return adaptive_pixel(renderer, px, py, rng, st);
+        return adaptive_pixel(renderer, px, py, first, rng, st);
     }
     real lo = REAL_MAX;
     real hi = -REAL_MAX;
-    vec3 sum = sum_samples(renderer, px, py, renderer->aa, renderer->spp, rng, st, &lo, &hi);
-    return vec3_scale(sum, 1 / (real)renderer->spp);
+    int n = renderer->spp_pass;
+    vec3 sum = sum_samples(renderer, px, py, renderer->aa, first, n, rng, st, &lo, &hi);
+    return vec3_scale(sum, 1 / (real)n);
 }

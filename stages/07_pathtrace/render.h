@@ -38,7 +38,9 @@ struct renderer {
     struct camera camera;
     struct shadow_sampling shadow;
     int max_depth; /* longest chain of rays, the camera ray included */
-    int spp; /* camera samples per pixel */
+    int spp; /* camera samples per pixel, over all passes */
+    int spp_pass; /* of which each pass takes this many */
+    uint64_t seed; /* --seed: also orders each pixel's samples */
     int aa; /* enum aa_pattern */
     real aa_threshold;
     bool nee; /* next-event estimation: shadow rays to area lights */
@@ -70,9 +72,10 @@ vec3 shade(
  * beyond max_depth is traced. */
 vec3 trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct stats *st);
 
-/* The driver's pixel function (driver.h): the mean radiance of spp camera
- * rays through the pixel's square, placed as the aa pattern says (a box
- * filter: SCENES.md's pixel value). */
-vec3 render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st);
+/* The driver's pixel function (driver.h): the mean radiance of the pass's
+ * spp_pass camera rays through the pixel's square, placed as the aa pattern
+ * says for all spp of the passes together (a box filter: SCENES.md's pixel
+ * value). */
+vec3 render_pixel(const void *ctx, int px, int py, int pass, struct rng *rng, struct stats *st);
 
 #endif /* RENDER_H */

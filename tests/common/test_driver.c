@@ -1,7 +1,8 @@
 /*
  * test_driver.c - the tile renderer: every pixel computed once per pass,
  * images independent of the thread count, passes averaged, NaN pixels
- * counted and guarded, statistics summed over threads.
+ * counted and guarded, statistics summed over threads, a progressive
+ * pixel function told its pass.
  */
 #include <string.h>
 
@@ -25,6 +26,18 @@ nan_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
     (void)st;
     real zero = 0;
     return (px == 3 && py == 5) ? (vec3){zero / zero, 1, 1} : (vec3){1, 1, 1};
+}
+
+/* The pass number itself, so the image is the mean of 0 .. passes-1. */
+static vec3
+pass_number_pixel(const void *ctx, int px, int py, int pass, struct rng *rng, struct stats *st)
+{
+    (void)ctx;
+    (void)px;
+    (void)py;
+    (void)rng;
+    st->rays_camera++;
+    return vec3_splat((real)pass);
 }
 
 static struct render_job
@@ -91,7 +104,21 @@ TEST(seed_changes_the_image)
     image_free(&b);
 }
 
+TEST(progressive_pixel_is_told_its_pass)
+{
+    struct image img = {0};
+    struct render_result r;
+    struct diag err;
+    struct render_job j = job_for(NULL, 2, 5);
+    j.pass_pixel = pass_number_pixel;
+    CHECK(render_image(&j, &img, &r, &err));
+    CHECK(r.passes_done == 5 && r.counts.rays_camera == 5 * 37 * 21);
+    CHECK(image_pixel(&img, 0, 0)[0] == 2 && image_pixel(&img, 36, 20)[2] == 2); /* (0+..+4)/5 */
+    image_free(&img);
+}
+
 TEST_MAIN(
     TEST_ENTRY(every_pixel_once_and_thread_independent),
     TEST_ENTRY(nan_pixels_are_counted_and_zeroed),
-    TEST_ENTRY(seed_changes_the_image))
+    TEST_ENTRY(seed_changes_the_image),
+    TEST_ENTRY(progressive_pixel_is_told_its_pass))
