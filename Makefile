@@ -1,7 +1,10 @@
 # stagelight - top-level Makefile.
 #
 #   make            build the common core, every stage (build/NN_name/render)
-#                   and the tools (build/tools/: imgcmp, plotcsv, gen_meshes)
+#                   and the tools (build/tools/: imgcmp, plotcsv, gen_meshes,
+#                   subdivide_glb) and the generated models (make models)
+#   make models     build/models/happy_res3_subdiv16.glb, the 1.08M-triangle
+#                   Buddha, made from scenes/models/happy_res3.glb
 #   make test       every test of common/ and of every stage; last line "N passed, N failed"
 #   make sanitize   the same tests built with AddressSanitizer + UBSan (build/sanitize/)
 #   make fuzz       every parser under libFuzzer for FUZZ_SECONDS (60) each (clang)
@@ -19,10 +22,32 @@ include common/config.mk
 STAGES := $(notdir $(wildcard stages/[0-9][0-9]_*))
 LOGS := $(BUILDROOT)test-logs
 
-all: $(STAGES) tools
+all: $(STAGES) tools models
 
 common:
 	@$(MAKE) --no-print-directory -C common
+
+# The 1,075,840-triangle Happy Buddha: happy_res3 with every triangle split
+# into four at its edge midpoints, twice (scenes/models/CREDITS.md).  Too big
+# for the repository (25 MB) and made in a second, so it is generated.  It
+# does not depend on the build variant (REAL, SANITIZE): the same bytes from
+# any of them, made once.  It needs the glTF loader (tinygltf).
+MODELS := build/models/happy_res3_subdiv16.glb
+STANFORD_CREDIT := Stanford 3D Scanning Repository, Stanford University Computer Graphics \
+	Laboratory (Happy Buddha, happy_vrip_res3), subdivided twice by stagelight
+ifeq ($(TINYGLTF),1)
+models: $(MODELS)
+else
+models:
+	@echo "models: not generated (no glTF support: apt-get install libtinygltf-dev)"
+endif
+
+build/models/happy_res3_subdiv16.glb: scenes/models/happy_res3.glb tests/tools/subdivide_glb.c \
+		tests/lib/meshgen.c | tools
+	@mkdir -p $(@D)
+	@tmp=$@.tmp-$$$$; \
+	$(BUILDROOT)tools/subdivide_glb $< 2 $$tmp "$(STANFORD_CREDIT)" && mv -f $$tmp $@ \
+		|| { rm -f $$tmp; exit 1; }
 
 # Each stage after the common core, so parallel stage builds never race on it.
 $(STAGES): common
@@ -108,4 +133,4 @@ check-labs: all
 clean:
 	rm -rf build
 
-.PHONY: all common tools test sanitize fuzz config demo trade bench docs-images clean lab grade diffs branches check-labs $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config demo trade bench docs-images clean lab grade diffs branches check-labs $(STAGES)

@@ -47,14 +47,14 @@ frame(struct bench_model *m)
 }
 
 bool
-bench_load(struct bench_model *m, const char *asset_dir, const char *file, struct diag *err)
+bench_load(struct bench_model *m, const char *path, struct diag *err)
 {
     *m = (struct bench_model){.seconds_load = 0};
-    snprintf(m->name, sizeof m->name, "%s", file);
-    char name[4096];
-    char text[512];
-    /* Mesh files are found relative to the scene's name. */
-    snprintf(name, sizeof name, "%s/bench.scene", asset_dir);
+    const char *slash = strrchr(path, '/');
+    snprintf(m->name, sizeof m->name, "%s", slash ? slash + 1 : path);
+    char text[4608];
+    /* A scene in the working directory: a relative path is taken from there,
+     * as the command line gave it. */
     int len = snprintf(
         text,
         sizeof text,
@@ -65,9 +65,13 @@ bench_load(struct bench_model *m, const char *asset_dir, const char *file, struc
         FOV_DEG,
         BENCH_WIDTH,
         BENCH_HEIGHT,
-        file);
+        path);
+    if (len < 0 || (size_t)len >= sizeof text) {
+        diag_set(err, path, 0, 0, "path too long");
+        return false;
+    }
     double start = clock_seconds();
-    if (!scene_load_string(text, (size_t)len, name, &m->scene, err)) {
+    if (!scene_load_string(text, (size_t)len, "bench.scene", &m->scene, err)) {
         return false;
     }
     m->seconds_load = clock_seconds() - start;

@@ -44,10 +44,15 @@ struct ray_batch {
     size_t n;
 };
 
-/* The model asset_dir/file (a glTF mesh) through the scene loader, framed.
- * False when it cannot be loaded (err says why: a missing file, no glTF
- * support). */
-bool bench_load(struct bench_model *m, const char *asset_dir, const char *file, struct diag *err);
+/* The models the benchmarks time unless told otherwise, from the project
+ * root: the generated 1.08M-triangle Buddha (make models) and the bunny. */
+#define BENCH_BIG_MODEL "build/models/happy_res3_subdiv16.glb"
+#define BENCH_SMALL_MODEL "scenes/models/bunny.glb"
+
+/* The model at path (a glTF mesh; relative to the working directory) through
+ * the scene loader, framed.  False when it cannot be loaded (err says why: a
+ * missing file, no glTF support). */
+bool bench_load(struct bench_model *m, const char *path, struct diag *err);
 
 /* A closed UV sphere of n_bands x 2 n_bands quads (4 n_bands^2 triangles)
  * made in memory, framed: the stand-in when the assets are absent. */

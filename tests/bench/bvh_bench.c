@@ -1,7 +1,7 @@
 /*
  * bvh_bench.c - how fast the stage's BVH builds and traces.
  *
- *     bvh_bench [ASSET_DIR]      (default ../shared/assets, from the project root)
+ *     bvh_bench [BIG.glb [SMALL.glb]]      (from the project root)
  *
  * For the Happy Buddha subdivided to 1.08M triangles and for the Stanford
  * bunny (69k), loaded through the scene loader and framed in a 600x600
@@ -18,8 +18,6 @@
 
 #include "benchlib.h"
 
-#define BIG_MODEL "happy_res3_subdiv16.glb"
-#define SMALL_MODEL "bunny.glb"
 #define SPHERE_BANDS 500 /* the stand-in: 4 * 500^2 = 1M triangles */
 #define BRUTE_STRIDE 1024 /* brute force traces every 1024th camera ray */
 
@@ -131,7 +129,8 @@ bench_model(struct bench_model *m, bool with_brute)
 int
 main(int argc, char **argv)
 {
-    const char *assets = argc > 1 ? argv[1] : "../shared/assets";
+    const char *big = argc > 1 ? argv[1] : BENCH_BIG_MODEL;
+    const char *small = argc > 2 ? argv[2] : BENCH_SMALL_MODEL;
     printf(
         "BVH benchmark: %s precision, BVH_MAX_LEAF %d, %dx%d camera rays, 1 point light, "
         "best of %d runs\n",
@@ -143,18 +142,18 @@ main(int argc, char **argv)
     struct diag err;
     struct bench_model m;
     bool ok = true;
-    if (bench_load(&m, assets, BIG_MODEL, &err)) {
+    if (bench_load(&m, big, &err)) {
         ok = bench_model(&m, false);
     } else {
-        printf("skipping %s: %s\n", BIG_MODEL, err.msg);
+        printf("skipping %s: %s\n", big, err.msg);
         bench_model_free(&m);
         ok = bench_generate_sphere(&m, SPHERE_BANDS, &err) && bench_model(&m, false);
     }
     bench_model_free(&m);
-    if (bench_load(&m, assets, SMALL_MODEL, &err)) {
+    if (bench_load(&m, small, &err)) {
         ok = bench_model(&m, true) && ok;
     } else {
-        printf("skipping %s: %s\n", SMALL_MODEL, err.msg);
+        printf("skipping %s: %s\n", small, err.msg);
     }
     bench_model_free(&m);
     return ok ? 0 : 1;

@@ -1,7 +1,7 @@
 /*
  * embree_bench.c - the same rays through Intel Embree 3, for scale.
  *
- *     embree_bench [ASSET_DIR]   (default ../shared/assets, from the project root)
+ *     embree_bench [BIG.glb [SMALL.glb]]   (from the project root)
  *
  * Loads the models as bvh_bench does (same loader, framing, camera rays and
  * shadow rays, the shadow rays starting from our hits), gives Embree the
@@ -19,8 +19,6 @@
 
 #include "benchlib.h"
 
-#define BIG_MODEL "happy_res3_subdiv16.glb"
-#define SMALL_MODEL "bunny.glb"
 #define SPHERE_BANDS 500
 
 struct embree {
@@ -220,7 +218,8 @@ bench_against_embree(struct bench_model *m)
 int
 main(int argc, char **argv)
 {
-    const char *assets = argc > 1 ? argv[1] : "../shared/assets";
+    const char *big = argc > 1 ? argv[1] : BENCH_BIG_MODEL;
+    const char *small = argc > 2 ? argv[2] : BENCH_SMALL_MODEL;
     printf(
         "Embree 3 against the stage's BVH: same models and rays, %s precision for ours, "
         "float for Embree; Mrays/s, best of %d runs\n",
@@ -229,18 +228,18 @@ main(int argc, char **argv)
     struct diag err;
     struct bench_model m;
     bool ok = true;
-    if (bench_load(&m, assets, BIG_MODEL, &err)) {
+    if (bench_load(&m, big, &err)) {
         ok = bench_against_embree(&m);
     } else {
-        printf("skipping %s: %s\n", BIG_MODEL, err.msg);
+        printf("skipping %s: %s\n", big, err.msg);
         bench_model_free(&m);
         ok = bench_generate_sphere(&m, SPHERE_BANDS, &err) && bench_against_embree(&m);
     }
     bench_model_free(&m);
-    if (bench_load(&m, assets, SMALL_MODEL, &err)) {
+    if (bench_load(&m, small, &err)) {
         ok = bench_against_embree(&m) && ok;
     } else {
-        printf("skipping %s: %s\n", SMALL_MODEL, err.msg);
+        printf("skipping %s: %s\n", small, err.msg);
     }
     bench_model_free(&m);
     return ok ? 0 : 1;

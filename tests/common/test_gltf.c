@@ -2,14 +2,14 @@
  * test_gltf.c - glTF loading (gltf.h) and the test mesh generator (meshgen.h).
  *
  * Round trips write meshes with meshgen's own GLB writer and load them back;
- * the real assets in ../shared/assets are checked against PROVENANCE.md when
- * present; hostile files are made by hand here, each refused with a message
- * naming the file.  Run it under AddressSanitizer/UBSan (make SANITIZE=1):
- * "never crashes" is half of what these tests check.  Tests that load files
- * skip in builds without tinygltf, except stub_message, which runs only
- * there.
+ * the models of scenes/models/ are checked against the counts and bounding
+ * boxes their credits file (CREDITS.md) and their origin give; hostile files are made by hand here,
+ * each refused with a message naming the file.  Run it under AddressSanitizer/UBSan (make
+ * SANITIZE=1): "never crashes" is half of what these tests check.  Tests that load files skip in
+ * builds without tinygltf, except stub_message, which runs only there.
  */
 #include <float.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -413,6 +413,80 @@ TEST(meshgen_other_closed_meshes)
     meshgen_free(&box);
 }
 
+/* Every vertex normal of m has unit length (to float32 precision). */
+static size_t
+non_unit_normals(const double *normals, size_t n_vertices)
+{
+    size_t bad = 0;
+    for (size_t v = 0; normals && v < n_vertices; v++) {
+        const double *n = normals + 3 * v;
+        bad += fabs(sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1) > 1e-5;
+    }
+    return bad;
+}
+
+TEST(meshgen_subdivide_closed)
+{
+    // A box twice subdivided: 12 * 16 triangles; Euler V - E + F = 2 with
+    // E = 3F/2 gives the vertices; the same closed surface, same volume.
+    struct meshgen_mesh box = meshgen_box((const double[3]){-1, 0, 2}, (const double[3]){1, 3, 5});
+    struct meshgen_mesh once = {0};
+    struct meshgen_mesh twice = {0};
+    CHECK(meshgen_subdivide(&box, &once) && meshgen_subdivide(&once, &twice));
+    CHECK(twice.n_triangles == 192 && twice.n_vertices == 2 + 192 / 2);
+    CHECK(twice.normals == NULL);
+    CHECK(meshgen_is_closed(&twice));
+    CHECK_NEAR(signed_volume6(twice.positions, twice.indices, twice.n_triangles), 6 * 18, 1e-9);
+    // Corners keep their index and position.
+    CHECK(memcmp(twice.positions, box.positions, 3 * box.n_vertices * sizeof(double)) == 0);
+    meshgen_free(&box);
+    meshgen_free(&once);
+    meshgen_free(&twice);
+}
+
+TEST(meshgen_subdivide_open_with_normals)
+{
+    // A 3 x 2 terrain: 4 * 3 = 12 vertices; 3 * 3 edges along x, 4 * 2
+    // along z and 6 diagonals, 23 edges, each of which gets a midpoint.
+    struct meshgen_mesh t = meshgen_terrain(3, 2, 4, 0.25, 1);
+    struct meshgen_mesh f = {0};
+    CHECK(meshgen_subdivide(&t, &f));
+    CHECK(f.n_triangles == 48 && f.n_vertices == 12 + 23);
+    CHECK(f.normals != NULL && non_unit_normals(f.normals, f.n_vertices) == 0);
+    size_t bad = 0;
+    for (size_t tri = 0; f.normals && tri < t.n_triangles; tri++) {
+        // Sub-triangle 4t + 1 is (ab, b, bc): ab the midpoint of a and b.
+        unsigned a = t.indices[3 * tri];
+        unsigned b = t.indices[3 * tri + 1];
+        unsigned ab = f.indices[12 * tri + 3];
+        double n[3];
+        double len = 0;
+        for (int k = 0; k < 3; k++) {
+            bad += f.positions[3 * ab + k] != (t.positions[3 * a + k] + t.positions[3 * b + k]) / 2;
+            n[k] = t.normals[3 * a + k] + t.normals[3 * b + k];
+            len += n[k] * n[k];
+        }
+        for (int k = 0; k < 3; k++) {
+            bad += fabs(f.normals[3 * ab + k] - n[k] / sqrt(len)) > 1e-12;
+        }
+        bad += f.indices[12 * tri + 4] != b;
+    }
+    CHECK_MSG(bad == 0, "%zu midpoints wrong", bad);
+    meshgen_free(&t);
+    meshgen_free(&f);
+    // Opposite normals at an edge's ends: the lower-indexed end's normal.
+    struct meshgen_mesh one = {0};
+    CHECK(meshgen_alloc(&one, 3, 1, true));
+    memcpy(one.positions, (const double[9]){0, 0, 0, 1, 0, 0, 0, 1, 0}, 9 * sizeof(double));
+    memcpy(one.normals, (const double[9]){0, 0, 1, 0, 0, -1, 0, 0, 1}, 9 * sizeof(double));
+    memcpy(one.indices, (const unsigned[3]){1, 0, 2}, 3 * sizeof(unsigned));
+    CHECK(meshgen_subdivide(&one, &f));
+    CHECK(f.n_vertices == 6 && f.n_triangles == 4);
+    CHECK(f.n_vertices == 6 && f.normals[3 * 3 + 2] == 1);  // midpoint of 1 and 0
+    meshgen_free(&one);
+    meshgen_free(&f);
+}
+
 TEST(meshgen_terrain_faces_up)
 {
     struct meshgen_mesh m = meshgen_terrain(20, 10, 4, 0.25, 1);
@@ -613,15 +687,14 @@ TEST(mirror_keeps_orientation)
 
 /* --- the real assets ------------------------------------------------------ */
 
-/* Load an asset from ../shared/assets; false (and *skip set) when absent. */
+/* Load a model of scenes/models/ (they are part of the repository, so a
+ * missing one is a failure, not a skip). */
 static bool
-load_asset(const char *name, struct gltf_mesh *m, bool *skip)
+load_model(const char *name, struct gltf_mesh *m)
 {
     char rel[256];
-    snprintf(rel, sizeof rel, "../shared/assets/%s", name);
-    const char *path = test_root_path(rel);
-    *skip = !test_file_exists(path);
-    return !*skip && load(path, m);
+    snprintf(rel, sizeof rel, "scenes/models/%s", name);
+    return load(test_root_path(rel), m);
 }
 
 static void
@@ -636,25 +709,89 @@ check_bbox(const struct gltf_mesh *m, const double lo[3], const double hi[3], do
     }
 }
 
+/* A Stanford model: its counts and its bounding box as Stanford's PLY file
+ * has them (CREDITS.md), with a unit normal at every vertex. */
+static void
+check_stanford_model(
+    const char *name,
+    size_t n_triangles,
+    size_t n_vertices,
+    const double lo[3],
+    const double hi[3])
+{
+    struct gltf_mesh m = {0};
+    CHECK(load_model(name, &m));
+    CHECK(m.n_triangles == n_triangles);
+    CHECK(m.n_vertices == n_vertices);
+    CHECK(m.normals != NULL && non_unit_normals(m.normals, m.n_vertices) == 0);
+    check_bbox(&m, lo, hi, 1e-6);
+    gltf_free(&m);
+}
+
 TEST(asset_bunny)
 {
     REQUIRE_GLTF();
-    struct gltf_mesh m = {0};
-    bool skip;
-    bool ok = load_asset("bunny.glb", &m, &skip);
-    if (skip) {
-        SKIP("../shared/assets/bunny.glb is not present");
-    }
-    CHECK(ok);
-    CHECK(m.n_triangles == 69451);
-    CHECK(m.n_vertices == 35947);
-    CHECK(m.normals != NULL);
-    check_bbox(
-        &m,
+    check_stanford_model(
+        "bunny.glb",
+        69451,
+        35947,
         (const double[3]){-0.094690, 0.032987, -0.061874},
-        (const double[3]){0.061009, 0.187321, 0.058800},
-        1e-6);
-    gltf_free(&m);
+        (const double[3]){0.061009, 0.187321, 0.058800});
+}
+
+TEST(asset_dragon)
+{
+    REQUIRE_GLTF();
+    check_stanford_model(
+        "dragon_res2.glb",
+        202520,
+        100250,
+        (const double[3]){-0.108188, 0.052739, -0.050345},
+        (const double[3]){0.096406, 0.197139, 0.041137});
+}
+
+TEST(asset_buddha)
+{
+    REQUIRE_GLTF();
+    check_stanford_model(
+        "happy_res3.glb",
+        67240,
+        32328,
+        (const double[3]){-0.046097, 0.049849, -0.047376},
+        (const double[3]){0.035197, 0.247673, 0.033971});
+}
+
+/* The 1.08M-triangle Buddha `make models` generates: happy_res3 with its
+ * triangles split into four twice, its corners where they were, the Stanford
+ * credit in the file. */
+TEST(generated_buddha)
+{
+    REQUIRE_GLTF();
+    const char *path = test_root_path("build/models/happy_res3_subdiv16.glb");
+    struct gltf_mesh big = {0};
+    struct gltf_mesh small = {0};
+    CHECK_MSG(load(path, &big), "%s: run `make models` first", path);
+    CHECK(load_model("happy_res3.glb", &small));
+    CHECK(big.n_triangles == 16 * small.n_triangles && big.n_triangles == 1075840);
+    CHECK(big.n_vertices == 522933);
+    bool corners_kept =
+        big.n_vertices >= small.n_vertices && small.n_vertices > 0
+        && memcmp(big.positions, small.positions, 3 * small.n_vertices * sizeof(double)) == 0;
+    CHECK(corners_kept);
+    CHECK(big.normals != NULL && non_unit_normals(big.normals, big.n_vertices) == 0);
+    size_t len = 0;
+    char *bytes = test_read_file(path, &len);
+    // The JSON chunk starts 20 bytes in; the credit is in asset.copyright.
+    size_t json_len = bytes && len >= 20 ? get_u32((unsigned char *)bytes + 12) : 0;
+    bool credited = false;
+    if (json_len > 0 && 20 + json_len <= len) {
+        bytes[20 + json_len - 1] = '\0';  // the last byte is padding
+        credited = strstr(bytes + 20, "\"copyright\":\"Stanford 3D Scanning Repository") != NULL;
+    }
+    CHECK(credited);
+    free(bytes);
+    gltf_free(&big);
+    gltf_free(&small);
 }
 
 /* Box.glb's root matrix maps (x, y, z) to (x, z, -y) (z up to y up).  Its
@@ -683,15 +820,10 @@ TEST(asset_box)
 {
     REQUIRE_GLTF();
     struct gltf_mesh m = {0};
-    bool skip;
-    bool ok = load_asset("Box.glb", &m, &skip);
-    if (skip) {
-        SKIP("../shared/assets/Box.glb is not present");
-    }
-    CHECK(ok);
+    CHECK(load_model("Box.glb", &m));
     CHECK(m.n_triangles == 12 && m.n_vertices == 24);
     check_bbox(&m, (const double[3]){-0.5, -0.5, -0.5}, (const double[3]){0.5, 0.5, 0.5}, 1e-6);
-    CHECK(box_matrix_applied(test_root_path("../shared/assets/Box.glb"), &m));
+    CHECK(box_matrix_applied(test_root_path("scenes/models/Box.glb"), &m));
     if (m.normals) {
         CHECK(misoriented_triangles(m.positions, m.normals, m.indices, m.n_triangles) == 0);
     }
@@ -703,12 +835,7 @@ TEST(asset_duck)
 {
     REQUIRE_GLTF();
     struct gltf_mesh m = {0};
-    bool skip;
-    bool ok = load_asset("Duck.glb", &m, &skip);
-    if (skip) {
-        SKIP("../shared/assets/Duck.glb is not present");
-    }
-    CHECK(ok);
+    CHECK(load_model("Duck.glb", &m));
     CHECK(m.n_triangles == 4212 && m.n_vertices == 2399);
     check_bbox(
         &m,
@@ -722,12 +849,7 @@ TEST(asset_cornell_box)
 {
     REQUIRE_GLTF();
     struct gltf_mesh m = {0};
-    bool skip;
-    bool ok = load_asset("cornell_box.glb", &m, &skip);
-    if (skip) {
-        SKIP("../shared/assets/cornell_box.glb is not present");
-    }
-    CHECK(ok);
+    CHECK(load_model("cornell_box.glb", &m));
     CHECK(m.n_triangles == 12 && m.n_vertices == 24);
     check_bbox(&m, (const double[3]){-1, 0, -1}, (const double[3]){1, 2, 1}, 1e-6);
     gltf_free(&m);
@@ -1525,6 +1647,8 @@ TEST_MAIN(
     TEST_ENTRY(meshgen_sphere_closed),
     TEST_ENTRY(meshgen_sphere_1m),
     TEST_ENTRY(meshgen_other_closed_meshes),
+    TEST_ENTRY(meshgen_subdivide_closed),
+    TEST_ENTRY(meshgen_subdivide_open_with_normals),
     TEST_ENTRY(meshgen_terrain_faces_up),
     TEST_ENTRY(meshgen_random_degenerate),
     TEST_ENTRY(round_trip_uint32),
@@ -1534,6 +1658,9 @@ TEST_MAIN(
     TEST_ENTRY(rotation_matches_matrix),
     TEST_ENTRY(mirror_keeps_orientation),
     TEST_ENTRY(asset_bunny),
+    TEST_ENTRY(asset_dragon),
+    TEST_ENTRY(asset_buddha),
+    TEST_ENTRY(generated_buddha),
     TEST_ENTRY(asset_box),
     TEST_ENTRY(asset_duck),
     TEST_ENTRY(asset_cornell_box),

@@ -9,6 +9,7 @@
  */
 #include "meshgen.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -283,6 +284,22 @@ struct midpoints {
     size_t mask;
 };
 
+/* The normal at the middle of edge (a, b): the normalised mean of its ends'
+ * normals, which is what interpolation across the old triangle gave there
+ * up to length; a's when the two cancel. */
+static void
+midpoint_normal(double *normals, size_t v, unsigned a, unsigned b)
+{
+    double n[3];
+    for (int k = 0; k < 3; k++) {
+        n[k] = normals[3 * a + k] + normals[3 * b + k];
+    }
+    double len = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; k++) {
+        normals[3 * v + k] = len > 0 ? n[k] / len : normals[3 * a + k];
+    }
+}
+
 static unsigned
 midpoint(struct midpoints *table, struct meshgen_mesh *m, unsigned a, unsigned b)
 {
@@ -298,19 +315,27 @@ midpoint(struct midpoints *table, struct meshgen_mesh *m, unsigned a, unsigned b
         for (int k = 0; k < 3; k++) {
             m->positions[3 * v + k] = (m->positions[3 * a + k] + m->positions[3 * b + k]) / 2;
         }
+        if (m->normals) {
+            midpoint_normal(m->normals, v, lo, hi);
+        }
         table->keys[slot] = key;
         table->vertex[slot] = (unsigned)v;
     }
     return table->vertex[slot];
 }
 
-/* Split every triangle of `from` into four; `to` gets the result. */
-static bool
-subdivide(const struct meshgen_mesh *from, struct meshgen_mesh *to)
+bool
+meshgen_subdivide(const struct meshgen_mesh *from, struct meshgen_mesh *to)
 {
-    size_t n_edges = from->n_triangles * 3 / 2;
+    // At most three new vertices a triangle (fewer where triangles share
+    // edges); the result must stay indexable by unsigned.
+    size_t max_edges = 3 * from->n_triangles;
+    if (from->n_triangles > SIZE_MAX / 12 || from->n_vertices + max_edges > UINT_MAX) {
+        *to = (struct meshgen_mesh){0};
+        return false;
+    }
     size_t slots = 1;
-    while (slots < 2 * n_edges) {
+    while (slots < 2 * max_edges) {
         slots *= 2;
     }
     struct midpoints table = {
@@ -318,9 +343,16 @@ subdivide(const struct meshgen_mesh *from, struct meshgen_mesh *to)
         malloc(slots * sizeof(unsigned)),
         slots - 1};
     bool ok = table.keys && table.vertex
-              && meshgen_alloc(to, from->n_vertices + n_edges, 4 * from->n_triangles, false);
+              && meshgen_alloc(
+                  to,
+                  from->n_vertices + max_edges,
+                  4 * from->n_triangles,
+                  from->normals != NULL);
     if (ok) {
         memcpy(to->positions, from->positions, 3 * from->n_vertices * sizeof(double));
+        if (from->normals) {
+            memcpy(to->normals, from->normals, 3 * from->n_vertices * sizeof(double));
+        }
         to->n_vertices = from->n_vertices;
         for (size_t t = 0; t < from->n_triangles; t++) {
             const unsigned *c = from->indices + 3 * t;
@@ -349,7 +381,7 @@ meshgen_icosphere(int subdivisions, double radius, const double center[3])
     }
     for (int level = 0; level < subdivisions; level++) {
         struct meshgen_mesh finer = {0};
-        bool ok = subdivide(&m, &finer);
+        bool ok = meshgen_subdivide(&m, &finer);
         meshgen_free(&m);
         if (!ok) {
             meshgen_free(&finer);
@@ -882,10 +914,32 @@ json_accessors(struct text *t, const struct glb_plan *plan)
     text_printf(t, "],");
 }
 
+/* s as the contents of a JSON string. */
+static void
+json_string_contents(struct text *t, const char *s)
+{
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') {
+            text_printf(t, "\\%c", c);
+        } else if (c < 0x20) {
+            text_printf(t, "\\u%04x", c);
+        } else {
+            text_printf(t, "%c", c);
+        }
+    }
+}
+
 static void
 json_document(struct text *t, const struct glb_plan *plan)
 {
-    text_printf(t, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"stagelight meshgen\"},");
+    text_printf(t, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"stagelight meshgen\"");
+    if (plan->opts->copyright) {
+        text_printf(t, ",\"copyright\":\"");
+        json_string_contents(t, plan->opts->copyright);
+        text_printf(t, "\"");
+    }
+    text_printf(t, "},");
     text_printf(t, "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],");
     json_node(t, plan->opts);
     text_printf(t, "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0");

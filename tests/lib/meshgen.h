@@ -60,6 +60,16 @@ struct meshgen_mesh meshgen_sphere(
  * 20 * 4^subdivisions triangles, no poles; exact sphere normals. */
 struct meshgen_mesh meshgen_icosphere(int subdivisions, double radius, const double center[3]);
 
+/* Split every triangle of `from` into four at its edge midpoints, each
+ * midpoint made once and shared by the triangles of its edge (the mesh need
+ * not be closed), into `to` (its arrays are new; `from` is unchanged).
+ * Corners keep their index.  Normals, when `from` has them, carry over; a
+ * midpoint's is the normalised mean of its edge's ends' (the lower-indexed
+ * end's when they cancel), so the smooth shading stays that of `from`.  False
+ * (and `to` empty) when memory runs out or the result would not fit
+ * unsigned indices.  Triangles: 4 * n; vertices: n_vertices + edges. */
+bool meshgen_subdivide(const struct meshgen_mesh *from, struct meshgen_mesh *to);
+
 /* The closed axis-aligned box [lo, hi] (lo < hi on every axis): 8 shared
  * vertices, 12 triangles, no normals (it is meant to be flat-shaded). */
 struct meshgen_mesh meshgen_box(const double lo[3], const double hi[3]);
@@ -126,6 +136,9 @@ struct meshgen_glb_options {
     double rotation[4];
     bool has_scale;
     double scale[3];
+    /* asset.copyright (UTF-8; quotes, backslashes and control characters
+     * are escaped), or NULL for none. */
+    const char *copyright;
 };
 
 /* Write m as a .glb: one scene, one node (with the options' transform), one
