@@ -247,9 +247,10 @@ block_mean(const struct image *img, const struct metrics_block *b, double out[3]
     }
 }
 
-/* The test of one channel of one block, its inputs already in b. */
+/* The test of one channel of one block, its inputs already in b; dof is
+ * the degrees of freedom of var_mean. */
 static void
-test_channel(struct metrics_block *b, int c, int k, double ref_dof)
+test_channel(struct metrics_block *b, int c, double dof, double ref_dof)
 {
     bool finite = isfinite(b->mean[c]) && isfinite(b->var_mean[c]) && isfinite(b->ref_mean[c])
                   && isfinite(b->ref_se[c]);
@@ -262,13 +263,31 @@ test_channel(struct metrics_block *b, int c, int k, double ref_dof)
     struct stattest_result r = stattest_t_test_estimates(
         b->mean[c],
         b->var_mean[c],
-        k - 1,
+        dof,
         b->ref_mean[c],
         b->ref_se[c] * b->ref_se[c],
         ref_dof);
     b->t[c] = r.t;
     b->dof[c] = r.dof;
     b->p[c] = isnan(r.p) ? 0 : r.p;
+}
+
+/* The reference's side of block `index` and the three tests, the render's
+ * mean and var_mean already in b with dof degrees of freedom. */
+static void
+test_block(
+    const struct image *ref,
+    const struct metrics_block_params *params,
+    int index,
+    double dof,
+    struct metrics_block *b)
+{
+    block_mean(ref, b, b->ref_mean);
+    for (int c = 0; c < 3; c++) {
+        b->ref_se[c] = params->ref_se ? params->ref_se[3 * (size_t)index + (size_t)c]
+                                      : params->ref_rel_se * fabs(b->ref_mean[c]);
+        test_channel(b, c, dof, params->ref_dof);
+    }
 }
 
 /* Fill block `index` (rectangle already set) from the renders and ref. */
@@ -289,14 +308,50 @@ fill_block(
             stattest_welford_add(&w[c], m[c]);
         }
     }
-    block_mean(ref, b, b->ref_mean);
     for (int c = 0; c < 3; c++) {
         b->mean[c] = w[c].mean;
         b->var_mean[c] = stattest_welford_var_of_mean(&w[c]);
-        b->ref_se[c] = params->ref_se ? params->ref_se[3 * (size_t)index + (size_t)c]
-                                      : params->ref_rel_se * fabs(b->ref_mean[c]);
-        test_channel(b, c, k, params->ref_dof);
     }
+    test_block(ref, params, index, k - 1, b);
+}
+
+/* Block `index` of one estimate with per-pixel variances: the pixels of a
+ * block are independent estimates, so the variance of their mean is
+ * sum(v_i) / n^2, and its degrees of freedom Welch-Satterthwaite's,
+ * (sum v_i)^2 / sum(v_i^2 / d) for per-pixel variances of d degrees of
+ * freedom (d = 0: exact variances, infinitely many). */
+static void
+fill_block_variance(
+    const struct image *render,
+    const struct image *variance,
+    double pixel_dof,
+    const struct image *ref,
+    const struct metrics_block_params *params,
+    int index,
+    struct metrics_block *b)
+{
+    double sum[3] = {0, 0, 0};
+    double sum_sq[3] = {0, 0, 0};
+    for (int y = b->y0; y < b->y0 + b->h; y++) {
+        for (int x = b->x0; x < b->x0 + b->w; x++) {
+            const float *v = image_pixel(variance, x, y);
+            for (int c = 0; c < 3; c++) {
+                sum[c] += v[c];
+                sum_sq[c] += (double)v[c] * v[c];
+            }
+        }
+    }
+    block_mean(render, b, b->mean);
+    double n = (double)b->w * (double)b->h;
+    double dof = INFINITY;
+    for (int c = 0; c < 3; c++) {
+        b->var_mean[c] = sum[c] / (n * n);
+        if (pixel_dof > 0 && sum_sq[c] > 0) {
+            dof = fmin(dof, sum[c] * sum[c] / (sum_sq[c] / pixel_dof));
+        }
+    }
+    /* One dof for the three channels, the smallest: they share pixels. */
+    test_block(ref, params, index, dof, b);
 }
 
 static bool
@@ -334,24 +389,18 @@ check_block_inputs(
     return true;
 }
 
-bool
-metrics_block_stats(
-    const struct image *renders,
-    int k,
+/* Cut ref's frame into blocks (rectangles set, statistics not). */
+static bool
+block_layout(
     const struct image *ref,
     const struct metrics_block_params *params,
     struct metrics_block_stats *out,
     struct diag *err)
 {
-    *out = (struct metrics_block_stats){0};
-    if (!check_block_inputs(renders, k, ref, params, err)) {
-        return false;
-    }
     int bs = params->block_size < IMAGE_MAX_DIM ? params->block_size : IMAGE_MAX_DIM;
     out->blocks_x = (ref->width + bs - 1) / bs;
     out->blocks_y = (ref->height + bs - 1) / bs;
     out->n_blocks = out->blocks_x * out->blocks_y;
-    out->k = k;
     out->blocks = calloc((size_t)out->n_blocks, sizeof *out->blocks);
     if (!out->blocks) {
         diag_set(err, NULL, 0, 0, "out of memory for %d blocks", out->n_blocks);
@@ -363,7 +412,53 @@ metrics_block_stats(
         b->y0 = (i / out->blocks_x) * bs;
         b->w = ref->width - b->x0 < bs ? ref->width - b->x0 : bs;
         b->h = ref->height - b->y0 < bs ? ref->height - b->y0 : bs;
-        fill_block(renders, k, ref, params, i, b);
+    }
+    return true;
+}
+
+bool
+metrics_block_stats(
+    const struct image *renders,
+    int k,
+    const struct image *ref,
+    const struct metrics_block_params *params,
+    struct metrics_block_stats *out,
+    struct diag *err)
+{
+    *out = (struct metrics_block_stats){0};
+    if (!check_block_inputs(renders, k, ref, params, err) || !block_layout(ref, params, out, err)) {
+        return false;
+    }
+    out->k = k;
+    for (int i = 0; i < out->n_blocks; i++) {
+        fill_block(renders, k, ref, params, i, &out->blocks[i]);
+    }
+    return true;
+}
+
+bool
+metrics_block_stats_variance(
+    const struct image *render,
+    const struct image *variance,
+    double pixel_dof,
+    const struct image *ref,
+    const struct metrics_block_params *params,
+    struct metrics_block_stats *out,
+    struct diag *err)
+{
+    *out = (struct metrics_block_stats){0};
+    if (!(pixel_dof >= 0)) {
+        diag_set(err, NULL, 0, 0, "bad degrees of freedom %g", pixel_dof);
+        return false;
+    }
+    /* The size checks of two renders serve the render and its variance. */
+    const struct image pair[2] = {*render, *variance};
+    if (!check_block_inputs(pair, 2, ref, params, err) || !block_layout(ref, params, out, err)) {
+        return false;
+    }
+    out->k = 1;
+    for (int i = 0; i < out->n_blocks; i++) {
+        fill_block_variance(render, variance, pixel_dof, ref, params, i, &out->blocks[i]);
     }
     return true;
 }

@@ -154,6 +154,23 @@ bool metrics_block_stats(
     struct metrics_block_stats *out,
     struct diag *err);
 
+/* The same tests for ONE estimate whose per-pixel variance is known (the
+ * squared standard error of each pixel, e.g. from merge or from the spread
+ * of a few renders): a block's var_mean is the sum of its pixels' variances
+ * over n^2 (pixels are independent estimates), with Welch-Satterthwaite's
+ * degrees of freedom from pixel_dof per pixel (0: exact variances).  Far
+ * more powerful than the spread of K block means when K is small: two
+ * renders give one degree of freedom per block there, but hundreds here.
+ * out->k is 1. */
+bool metrics_block_stats_variance(
+    const struct image *render,
+    const struct image *variance,
+    double pixel_dof,
+    const struct image *ref,
+    const struct metrics_block_params *params,
+    struct metrics_block_stats *out,
+    struct diag *err);
+
 /* Free the blocks; accepts a zero-initialised struct. */
 void metrics_block_stats_free(struct metrics_block_stats *s);
 

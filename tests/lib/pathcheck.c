@@ -150,6 +150,16 @@ bool
 pathcheck_meta(const char *name, const char *key, double *out)
 {
     const char *path = test_root_path("tests/reference/META.json");
+    bool ok = pathcheck_meta_in(path, name, key, out);
+    if (!ok) {
+        printf("%s: no number \"%s\" for image \"%s\"\n", path, key, name);
+    }
+    return ok;
+}
+
+bool
+pathcheck_meta_in(const char *path, const char *name, const char *key, double *out)
+{
     char *text = test_read_file(path, NULL);
     char pattern[160];
     snprintf(pattern, sizeof pattern, "\"%s\"", name);
@@ -169,9 +179,6 @@ pathcheck_meta(const char *name, const char *key, double *out)
             *out = strtod(k, &stop);
             ok = stop != k;
         }
-    }
-    if (!ok) {
-        printf("%s: no number \"%s\" for image \"%s\"\n", path, key, name);
     }
     free(text);
     return ok;

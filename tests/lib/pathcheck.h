@@ -86,6 +86,10 @@ bool pathcheck_downsample(const struct image *in, int factor, struct image *out)
  * message) when the file, the image or the key is missing. */
 bool pathcheck_meta(const char *name, const char *key, double *out);
 
+/* The same in the META.json-style file at path, quietly (compare reads the
+ * META.json beside a reference this way). */
+bool pathcheck_meta_in(const char *path, const char *name, const char *key, double *out);
+
 /* Outcome of a set of tests at one significance level. */
 struct pathcheck_tally {
     size_t tests;

@@ -1,0 +1,539 @@
+/*
+ * compare.c - "why is my image wrong?": a render against a reference, in
+ * numbers, in words and as an error map.
+ *
+ *     compare [options] RENDER [RENDER2 ...] REFERENCE
+ *
+ * Prints relMSE, RMSE, the mean of each channel of both images and the
+ * worst block, then tells noise from bias when it can: with two or more
+ * renders of different seeds (or one render and --variance), each block of
+ * the render is t-tested against the reference (metrics.h, stattest.h), at
+ * the family level --alpha Sidak-corrected for the number of tests, and
+ * the verdict names the blocks that fail.  Optional outputs: the error map
+ * (--map, errmap.h) and a self-contained report page (--html, report.c).
+ * Exit status: 0 the images agree, 1 biased, 2 bad input or usage.
+ */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "compare.h"
+#include "errmap.h"
+#include "estimate.h"
+#include "imgread.h"
+#include "pathcheck.h"
+#include "stattest.h"
+
+#define MAX_RENDERS 64
+#define DEFAULT_BLOCK 16
+#define DEFAULT_ALPHA 0.01
+#define MAX_LISTED 10 /* failing blocks listed in the text output */
+
+struct args {
+    struct comparison c;
+    const char *paths[MAX_RENDERS + 1];
+    int n_paths;
+    const char *map_path;
+    const char *html_path;
+    double range; /* 0: automatic */
+    bool quiet;
+    bool ref_se_given;
+};
+
+static const char usage_line[] = "usage: compare [options] RENDER [RENDER2 ...] REFERENCE\n";
+
+static void
+usage(FILE *f)
+{
+    fputs(usage_line, f);
+    fputs(
+        "\n"
+        "Compares a render with a reference image (.pfm, .exr, or .png for a rough\n"
+        "look) and says whether they differ by more than the render's noise.\n"
+        "\n"
+        "Give two or more renders of the same scene and options with different\n"
+        "--seed values (their mean is compared; each should have the same spp), or\n"
+        "one render and --variance.  Each BLOCKxBLOCK block and channel is then\n"
+        "t-tested against the reference at the level --alpha, Sidak-corrected for\n"
+        "the number of tests: 'consistent with the reference (noise only)' or\n"
+        "'biased', with the failing blocks named.  With one render alone only the\n"
+        "numbers are printed: noise cannot be told from bias.\n"
+        "\n"
+        "  --variance FILE     per-pixel variance of RENDER's pixels (the squared\n"
+        "                      standard error), e.g. written by merge --variance\n"
+        "  --variance-dof N    its degrees of freedom (merge prints them; default 0:\n"
+        "                      taken as exact)\n"
+        "  --block N           block size in pixels (default 16)\n"
+        "  --alpha A           family significance level (default 0.01)\n"
+        "  --ref-rel-se S      the reference's relative standard error per pixel (a\n"
+        "                      block's is S / sqrt(its pixels)) and\n"
+        "  --ref-dof N         its degrees of freedom (default: from META.json beside\n"
+        "                      the reference, else 0 and 0: an exact reference)\n"
+        "  --map FILE.png      write the error map: signed relative error, blue\n"
+        "                      darker, red brighter, failing blocks outlined\n"
+        "  --range R           the map's scale is -R..+R (default: automatic)\n"
+        "  --html FILE.html    write a self-contained report page\n"
+        "  --title TEXT        the report page's title\n"
+        "  --max-relmse X      with one render alone: fail when relMSE > X\n"
+        "  -q, --quiet         print only the verdict\n"
+        "  -h, --help          this text\n"
+        "\n"
+        "Exit status: 0 the images agree (or, one render alone, were compared),\n"
+        "1 biased (or relMSE above --max-relmse, or NaN/Inf pixels), 2 bad input.\n",
+        f);
+}
+
+/* A number option's value; false (message printed) when it is not one. */
+static bool
+parse_number(const char *name, const char *value, double lo, double hi, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(value, &end);
+    if (end == value || *end != '\0' || errno == ERANGE || !(v >= lo && v <= hi)) {
+        fprintf(stderr, "compare: error: %s expects a number in [%g, %g], got '%s'\n", name, lo, hi, value);
+        return false;
+    }
+    *out = v;
+    return true;
+}
+
+/* Options that take a value; false on bad usage (message printed). */
+static bool
+parse_valued(struct args *a, const char *name, const char *value)
+{
+    struct comparison *c = &a->c;
+    double v = 0;
+    if (strcmp(name, "--variance") == 0) {
+        c->variance_path = value;
+    } else if (strcmp(name, "--map") == 0) {
+        a->map_path = value;
+    } else if (strcmp(name, "--html") == 0) {
+        a->html_path = value;
+    } else if (strcmp(name, "--title") == 0) {
+        c->title = value;
+    } else if (strcmp(name, "--variance-dof") == 0) {
+        return parse_number(name, value, 0, 1e9, &c->pixel_dof);
+    } else if (strcmp(name, "--block") == 0) {
+        if (!parse_number(name, value, 1, IMAGE_MAX_DIM, &v) || v != floor(v)) {
+            fprintf(stderr, "compare: error: --block expects a whole number of pixels\n");
+            return false;
+        }
+        c->block_size = (int)v;
+    } else if (strcmp(name, "--alpha") == 0) {
+        return parse_number(name, value, 1e-12, 0.5, &c->alpha);
+    } else if (strcmp(name, "--ref-rel-se") == 0) {
+        a->ref_se_given = true;
+        return parse_number(name, value, 0, 1e6, &c->ref_rel_se);
+    } else if (strcmp(name, "--ref-dof") == 0) {
+        a->ref_se_given = true;
+        return parse_number(name, value, 0, 1e12, &c->ref_dof);
+    } else if (strcmp(name, "--range") == 0) {
+        return parse_number(name, value, 1e-6, 1e6, &a->range);
+    } else if (strcmp(name, "--max-relmse") == 0) {
+        return parse_number(name, value, 0, 1e30, &c->max_relmse);
+    } else {
+        fprintf(stderr, "compare: error: unknown option '%s'\n", name);
+        return false;
+    }
+    return true;
+}
+
+static bool
+takes_value(const char *s)
+{
+    static const char *const valued[] = {"--variance", "--variance-dof", "--block", "--alpha",
+                                         "--ref-rel-se", "--ref-dof", "--map", "--range",
+                                         "--html", "--title", "--max-relmse"};
+    for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++) {
+        if (strcmp(s, valued[i]) == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* 0: parsed; 1: --help; 2: bad usage (message printed). */
+static int
+parse_args(int argc, char **argv, struct args *a)
+{
+    a->c.block_size = DEFAULT_BLOCK;
+    a->c.alpha = DEFAULT_ALPHA;
+    for (int i = 1; i < argc; i++) {
+        const char *s = argv[i];
+        if (strcmp(s, "-h") == 0 || strcmp(s, "--help") == 0) {
+            return 1;
+        } else if (strcmp(s, "-q") == 0 || strcmp(s, "--quiet") == 0) {
+            a->quiet = true;
+        } else if (takes_value(s)) {
+            if (i + 1 >= argc) {
+                fprintf(stderr, "compare: error: %s needs a value\n", s);
+                return 2;
+            }
+            if (!parse_valued(a, s, argv[++i])) {
+                return 2;
+            }
+        } else if (s[0] == '-' && s[1] != '\0') {
+            fprintf(stderr, "compare: error: unknown option '%s'\n", s);
+            return 2;
+        } else if (a->n_paths <= MAX_RENDERS) {
+            a->paths[a->n_paths++] = s;
+        } else {
+            fprintf(stderr, "compare: error: at most %d renders\n", MAX_RENDERS);
+            return 2;
+        }
+    }
+    if (a->n_paths < 2) {
+        fprintf(stderr, "compare: error: expected a RENDER and a REFERENCE\n");
+        return 2;
+    }
+    a->c.render_paths = a->paths;
+    a->c.k = a->n_paths - 1;
+    a->c.reference_path = a->paths[a->n_paths - 1];
+    if (a->c.variance_path && a->c.k > 1) {
+        fprintf(stderr, "compare: error: --variance goes with one render, not %d\n", a->c.k);
+        return 2;
+    }
+    return 0;
+}
+
+/* The reference's noise from the META.json in its directory (the format of
+ * tests/reference/: an object per image name holding "p90_rel_se_pixel" and
+ * "batches"), unless given on the command line.  Like the project's tests,
+ * the 90th-percentile per-pixel SE stands for every pixel's: an
+ * overestimate, which errs towards "consistent". */
+static void
+reference_noise_from_meta(struct comparison *c)
+{
+    const char *path = c->reference_path;
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    const char *dot = strrchr(base, '.');
+    char name[256], meta[4096];
+    snprintf(name, sizeof name, "%.*s", (int)(dot ? dot - base : (long)strlen(base)), base);
+    snprintf(meta, sizeof meta, "%.*sMETA.json", (int)(base - path), path);
+    double rel_se = 0, batches = 0;
+    if (pathcheck_meta_in(meta, name, "p90_rel_se_pixel", &rel_se)
+        && pathcheck_meta_in(meta, name, "batches", &batches) && rel_se >= 0 && batches >= 2) {
+        c->ref_rel_se = rel_se;
+        c->ref_dof = batches - 1;
+        c->ref_se_from_meta = true;
+    }
+}
+
+/* Read every input; the renders are combined into their mean and its
+ * per-pixel variance.  False (diag) on unreadable files or mismatches. */
+static bool
+load_inputs(struct comparison *c, struct diag *err)
+{
+    struct image renders[MAX_RENDERS] = {{0}};
+    double weights[MAX_RENDERS];
+    bool ok = imgread(c->reference_path, &c->reference, err);
+    for (int j = 0; ok && j < c->k; j++) {
+        weights[j] = 1;
+        ok = imgread(c->render_paths[j], &renders[j], err);
+        if (ok && (renders[j].width != c->reference.width || renders[j].height != c->reference.height)) {
+            diag_set(err, c->render_paths[j], 0, 0, "the render is %dx%d but the reference %s is %dx%d",
+                     renders[j].width, renders[j].height, c->reference_path, c->reference.width,
+                     c->reference.height);
+            ok = false;
+        }
+    }
+    ok = ok && estimate_combine(renders, weights, c->k, &c->render, c->k >= 2 ? &c->variance : NULL, err);
+    c->noise = c->k >= 2 ? NOISE_RENDERS : NOISE_NONE;
+    c->pixel_dof = c->k >= 2 ? c->k - 1 : c->pixel_dof;
+    c->renders_identical = ok && c->k >= 2;
+    for (int j = 1; c->renders_identical && j < c->k; j++) {
+        size_t bytes = (size_t)renders[0].width * (size_t)renders[0].height * 3 * sizeof(float);
+        c->renders_identical = memcmp(renders[0].rgb, renders[j].rgb, bytes) == 0;
+    }
+    for (int j = 0; j < c->k; j++) {
+        image_free(&renders[j]);
+    }
+    if (ok && c->variance_path) {
+        ok = imgread(c->variance_path, &c->variance, err);
+        if (ok && (c->variance.width != c->render.width || c->variance.height != c->render.height)) {
+            diag_set(err, c->variance_path, 0, 0, "the variance image is %dx%d but the render is %dx%d",
+                     c->variance.width, c->variance.height, c->render.width, c->render.height);
+            ok = false;
+        }
+        c->noise = NOISE_VARIANCE;
+    }
+    return ok;
+}
+
+int
+compare_block_channel(const struct metrics_block *b)
+{
+    int best = 0;
+    for (int ch = 1; ch < 3; ch++) {
+        if (b->p[ch] < b->p[best]) {
+            best = ch;
+        }
+    }
+    return best;
+}
+
+void
+compare_describe_block(char *buf, size_t cap, const struct metrics_block *b)
+{
+    static const char *const names[3] = {"red", "green", "blue"};
+    int ch = compare_block_channel(b);
+    double diff = b->mean[ch] - b->ref_mean[ch];
+    int n = snprintf(buf, cap, "the block at x %d-%d, y %d-%d ", b->x0, b->x0 + b->w - 1, b->y0, b->y0 + b->h - 1);
+    if (n < 0 || (size_t)n >= cap) {
+        return;
+    }
+    if (!isfinite(b->mean[ch])) {
+        snprintf(buf + n, cap - (size_t)n, "holds NaN or infinite pixels");
+    } else if (b->ref_mean[ch] != 0) {
+        snprintf(buf + n, cap - (size_t)n, "is %.2g%% %s than the reference (%s), %.2g standard errors",
+                 fabs(100 * diff / b->ref_mean[ch]), diff < 0 ? "darker" : "brighter", names[ch], fabs(b->t[ch]));
+    } else {
+        snprintf(buf + n, cap - (size_t)n, "is %.3g %s than the reference's 0 (%s), %.2g standard errors",
+                 fabs(diff), diff < 0 ? "darker" : "brighter", names[ch], fabs(b->t[ch]));
+    }
+}
+
+static double
+block_min_p(const struct metrics_block *b)
+{
+    return fmin(b->p[0], fmin(b->p[1], b->p[2]));
+}
+
+/* Sort failing blocks by their smallest p (most significant first). */
+static const struct metrics_block *sort_blocks;
+
+static int
+by_significance(const void *a, const void *b)
+{
+    double pa = block_min_p(&sort_blocks[*(const int *)a]);
+    double pb = block_min_p(&sort_blocks[*(const int *)b]);
+    return (pa > pb) - (pa < pb);
+}
+
+/* The block tests and the list of failing blocks. */
+static bool
+test_blocks(struct comparison *c, struct diag *err)
+{
+    /* A block mean of n independent pixels has 1/sqrt(n) of their relative
+     * SE (taken for a whole block; edge blocks are smaller). */
+    struct metrics_block_params params = {
+        .block_size = c->block_size,
+        .ref_rel_se = c->ref_rel_se / c->block_size,
+        .ref_dof = c->ref_dof,
+    };
+    if (!metrics_block_stats_variance(&c->render, &c->variance, c->pixel_dof, &c->reference, &params,
+                                      &c->blocks, err)) {
+        return false;
+    }
+    c->level = stattest_sidak(c->alpha, 3.0 * c->blocks.n_blocks);
+    c->failing = malloc((size_t)c->blocks.n_blocks * sizeof *c->failing);
+    if (!c->failing) {
+        diag_set(err, NULL, 0, 0, "out of memory");
+        return false;
+    }
+    for (int i = 0; i < c->blocks.n_blocks; i++) {
+        if (!(block_min_p(&c->blocks.blocks[i]) >= c->level)) {
+            c->failing[c->n_failing++] = i;
+        }
+    }
+    sort_blocks = c->blocks.blocks;
+    qsort(c->failing, (size_t)c->n_failing, sizeof *c->failing, by_significance);
+    return true;
+}
+
+/* The block whose mean luminance is furthest from the reference's, as the
+ * error map measures it (errmap.h); blocks cut as the tests cut them. */
+static void
+find_worst(struct comparison *c)
+{
+    int bs = c->block_size;
+    int bx = (c->render.width + bs - 1) / bs, by = (c->render.height + bs - 1) / bs;
+    c->worst = -1;
+    c->worst_error = 0;
+    for (int i = 0; i < bx * by; i++) {
+        int x0 = (i % bx) * bs, y0 = (i / bx) * bs;
+        double sx = 0, sr = 0;
+        for (int y = y0; y < y0 + bs && y < c->render.height; y++) {
+            for (int x = x0; x < x0 + bs && x < c->render.width; x++) {
+                sx += metrics_luminance(image_pixel(&c->render, x, y));
+                sr += metrics_luminance(image_pixel(&c->reference, x, y));
+            }
+        }
+        double n = (double)(fmin(bs, c->render.width - x0) * fmin(bs, c->render.height - y0));
+        double e = (sx / n - sr / n) / sqrt(sr / n * (sr / n) + METRICS_RELMSE_EPS);
+        if (c->worst < 0 || !(fabs(e) <= fabs(c->worst_error))) {
+            c->worst = i;
+            c->worst_error = e;
+            if (!isfinite(e)) {
+                return;
+            }
+        }
+    }
+}
+
+static void
+decide(struct comparison *c)
+{
+    const struct metrics *m = &c->m;
+    if (c->noise == NOISE_NONE) {
+        bool nonfinite = m->n_nonfinite > 0;
+        bool over = c->max_relmse > 0 && !(m->relmse <= c->max_relmse);
+        c->status = nonfinite || over ? COMPARE_BIASED : COMPARE_AGREE;
+        if (nonfinite) {
+            snprintf(c->verdict, sizeof c->verdict, "wrong: %zu pixels are NaN or infinite", m->n_nonfinite);
+        } else if (over) {
+            snprintf(c->verdict, sizeof c->verdict, "too far: relMSE %.3g is above the limit %.3g", m->relmse,
+                     c->max_relmse);
+        } else {
+            snprintf(c->verdict, sizeof c->verdict,
+                     "not tested for bias: give a second render with another --seed, or --variance");
+        }
+        return;
+    }
+    c->status = c->n_failing ? COMPARE_BIASED : COMPARE_AGREE;
+    if (c->n_failing) {
+        snprintf(c->verdict, sizeof c->verdict,
+                 "biased: %d of %d blocks differ from the reference by more than noise", c->n_failing,
+                 c->blocks.n_blocks);
+    } else {
+        snprintf(c->verdict, sizeof c->verdict, "consistent with the reference (noise only): none of %d blocks differs by more than noise",
+                 c->blocks.n_blocks);
+    }
+}
+
+static void
+print_text(const struct comparison *c)
+{
+    const struct metrics *m = &c->m;
+    printf("render     %s", c->render_paths[0]);
+    if (c->k > 1) {
+        printf(" and %d more (their mean)", c->k - 1);
+    }
+    printf("\nreference  %s", c->reference_path);
+    if (c->ref_rel_se > 0) {
+        printf(" (relative SE %.2g per pixel, %g dof%s)", c->ref_rel_se, c->ref_dof,
+               c->ref_se_from_meta ? ", from its META.json" : "");
+    }
+    printf("\nsize       %dx%d\n", c->render.width, c->render.height);
+    printf("relMSE     %.4g\n", m->relmse);
+    printf("RMSE       %.4g\n", m->rmse);
+    printf("mean R G B render %.5g %.5g %.5g, reference %.5g %.5g %.5g\n", m->mean[0], m->mean[1], m->mean[2],
+           m->ref_mean[0], m->ref_mean[1], m->ref_mean[2]);
+    if (m->n_nonfinite) {
+        printf("NaN/Inf    %zu pixels (left out of the numbers above)\n", m->n_nonfinite);
+    }
+    if (c->worst >= 0) {
+        int bs = c->block_size, bx = (c->render.width + bs - 1) / bs;
+        int x0 = (c->worst % bx) * bs, y0 = (c->worst / bx) * bs;
+        printf("worst      the block at x %d-%d, y %d-%d: luminance %.2g%% %s\n", x0,
+               (x0 + bs < c->render.width ? x0 + bs : c->render.width) - 1, y0,
+               (y0 + bs < c->render.height ? y0 + bs : c->render.height) - 1, fabs(100 * c->worst_error),
+               c->worst_error < 0 ? "darker" : "brighter");
+    }
+    if (c->noise != NOISE_NONE) {
+        printf("noise      %s\n", c->noise == NOISE_RENDERS ? "from the spread of the renders" : "from the variance image");
+        if (c->renders_identical) {
+            printf("note       the renders are identical (a deterministic stage, or one seed twice):\n"
+                   "           no noise, so any difference beyond the reference's own noise counts\n");
+        }
+        printf("tests      %d blocks of %dx%d x 3 channels, each at %.2g (alpha %g, Sidak-corrected)\n",
+               c->blocks.n_blocks, c->block_size, c->block_size, c->level, c->alpha);
+    }
+    printf("verdict    %s\n", c->verdict);
+    for (int i = 0; i < c->n_failing && i < MAX_LISTED; i++) {
+        char line[256];
+        compare_describe_block(line, sizeof line, &c->blocks.blocks[c->failing[i]]);
+        printf("           %s\n", line);
+    }
+    if (c->n_failing > MAX_LISTED) {
+        printf("           ... and %d more (see the error map)\n", c->n_failing - MAX_LISTED);
+    }
+}
+
+/* The error map of c (failing blocks outlined) into map. */
+static bool
+draw_map(const struct comparison *c, double range, struct image *map, struct diag *err)
+{
+    struct errmap_box *boxes = malloc((size_t)(c->n_failing ? c->n_failing : 1) * sizeof *boxes);
+    if (!boxes) {
+        diag_set(err, NULL, 0, 0, "out of memory");
+        return false;
+    }
+    for (int i = 0; i < c->n_failing; i++) {
+        const struct metrics_block *b = &c->blocks.blocks[c->failing[i]];
+        boxes[i] = (struct errmap_box){b->x0, b->y0, b->w, b->h};
+    }
+    bool ok = errmap_draw(&c->render, &c->reference, range, boxes, c->n_failing, map, err);
+    free(boxes);
+    return ok;
+}
+
+static bool
+run(struct args *a, struct diag *err)
+{
+    struct comparison *c = &a->c;
+    if (!a->ref_se_given) {
+        reference_noise_from_meta(c);
+    }
+    if (!load_inputs(c, err) || !metrics_compare(&c->render, &c->reference, NULL, &c->m, err)) {
+        return false;
+    }
+    if (c->noise != NOISE_NONE && !test_blocks(c, err)) {
+        return false;
+    }
+    find_worst(c);
+    decide(c);
+    c->map_range = a->range > 0 ? a->range : errmap_auto_range(&c->render, &c->reference);
+    struct image map = {0};
+    bool ok = true;
+    if (a->map_path || a->html_path) {
+        ok = draw_map(c, c->map_range, &map, err);
+    }
+    ok = ok && (!a->map_path || image_write(&map, a->map_path, err));
+    ok = ok && (!a->html_path || compare_write_html(c, &map, a->html_path, err));
+    image_free(&map);
+    return ok;
+}
+
+static void
+release(struct comparison *c)
+{
+    image_free(&c->render);
+    image_free(&c->reference);
+    image_free(&c->variance);
+    metrics_block_stats_free(&c->blocks);
+    free(c->failing);
+}
+
+int
+main(int argc, char **argv)
+{
+    static struct args a;
+    int status = parse_args(argc, argv, &a);
+    if (status == 1) {
+        usage(stdout);
+        return 0;
+    }
+    if (status == 2) {
+        fputs(usage_line, stderr);
+        return COMPARE_BAD_INPUT;
+    }
+    struct diag err = {0};
+    if (!run(&a, &err)) {
+        diag_print(stderr, &err, "error");
+        release(&a.c);
+        return COMPARE_BAD_INPUT;
+    }
+    if (a.quiet) {
+        printf("%s\n", a.c.verdict);
+    } else {
+        print_text(&a.c);
+    }
+    status = a.c.status;
+    release(&a.c);
+    return fflush(stdout) == 0 && !ferror(stdout) ? status : COMPARE_BAD_INPUT;
+}

@@ -1,0 +1,74 @@
+/*
+ * compare.h - what the compare tool found, for its text output (compare.c)
+ * and its report page (report.c).
+ */
+#ifndef COMPARE_H
+#define COMPARE_H
+
+#include <stdbool.h>
+#include <stdio.h>
+
+#include "diag.h"
+#include "image.h"
+#include "metrics.h"
+
+/* Exit statuses: the images agree, the render is biased, bad input. */
+enum compare_status {
+    COMPARE_AGREE = 0,
+    COMPARE_BIASED = 1,
+    COMPARE_BAD_INPUT = 2,
+};
+
+/* How the noise of the render was estimated. */
+enum compare_noise {
+    NOISE_NONE, /* one render, no variance: noise cannot be told from bias */
+    NOISE_RENDERS, /* the spread of k >= 2 renders with different seeds */
+    NOISE_VARIANCE, /* a per-pixel variance image given with the render */
+};
+
+struct comparison {
+    /* Inputs, as given. */
+    const char *const *render_paths;
+    int k; /* renders */
+    const char *reference_path;
+    const char *variance_path; /* NULL unless NOISE_VARIANCE */
+    const char *title; /* of the report page; NULL: the render's name */
+    int block_size;
+    double alpha; /* family significance level */
+    double ref_rel_se, ref_dof; /* the reference's noise (0: exact) */
+    bool ref_se_from_meta; /* ref_rel_se and ref_dof came from a META.json */
+    double max_relmse; /* NOISE_NONE: relMSE above this fails; 0: no limit */
+
+    /* What was compared: the mean of the renders (or the one render). */
+    struct image render;
+    struct image reference;
+    struct image variance; /* per-pixel variance of `render` (rgb NULL: none) */
+    double pixel_dof; /* degrees of freedom of `variance` (0: exact) */
+    enum compare_noise noise;
+    bool renders_identical; /* k >= 2 renders, all the same bit for bit */
+
+    struct metrics m;
+    struct metrics_block_stats blocks; /* n_blocks 0 when NOISE_NONE */
+    double level; /* the Sidak-corrected level of one block test */
+    int *failing; /* indices of failing blocks, most significant first */
+    int n_failing;
+    int worst; /* the block whose luminance is furthest off, relatively */
+    double worst_error; /* its signed relative error */
+    double map_range; /* the error map's scale, +-map_range */
+
+    enum compare_status status;
+    char verdict[256]; /* one line: "consistent with ..." or "biased: ..." */
+};
+
+/* The channel of block b whose test is most significant (smallest p). */
+int compare_block_channel(const struct metrics_block *b);
+
+/* One sentence about failing block b: "the block at x 0-15, y 32-47 is 2.5%
+ * darker than the reference (green), 6.1 standard errors". */
+void compare_describe_block(char *buf, size_t cap, const struct metrics_block *b);
+
+/* Write the report page of c with the error map (already drawn) to path,
+ * through a temporary file renamed into place. */
+bool compare_write_html(const struct comparison *c, const struct image *map, const char *path, struct diag *err);
+
+#endif /* COMPARE_H */

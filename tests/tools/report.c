@@ -1,0 +1,251 @@
+/*
+ * report.c - compare's report page: one self-contained HTML file.
+ *
+ * The render, the reference and the error map are embedded as PNG data
+ * URIs (RFC 2397; base64 of RFC 4648 section 4), so the page can be mailed
+ * or attached to a grade without its images going missing; nothing is
+ * fetched (no external script, style sheet or font: system fonts only).
+ * A slider (and a flip button) shows the render over the reference; it is
+ * a few lines of inline script, and the page still reads without it.  The
+ * layout is one column on a phone and side by side on a wider screen
+ * (flex-wrap, a viewport meta tag).
+ */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "atomic_file.h"
+#include "compare.h"
+
+static void
+put_escaped(FILE *f, const char *s)
+{
+    for (; *s; s++) {
+        switch (*s) {
+        case '&': fputs("&amp;", f); break;
+        case '<': fputs("&lt;", f); break;
+        case '>': fputs("&gt;", f); break;
+        case '"': fputs("&quot;", f); break;
+        default: fputc(*s, f);
+        }
+    }
+}
+
+static void
+put_base64(FILE *f, const unsigned char *data, size_t n)
+{
+    static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (size_t i = 0; i < n; i += 3) {
+        uint32_t v = (uint32_t)data[i] << 16;
+        v |= i + 1 < n ? (uint32_t)data[i + 1] << 8 : 0;
+        v |= i + 2 < n ? data[i + 2] : 0;
+        fputc(digits[v >> 18 & 63], f);
+        fputc(digits[v >> 12 & 63], f);
+        fputc(i + 1 < n ? digits[v >> 6 & 63] : '=', f);
+        fputc(i + 2 < n ? digits[v & 63] : '=', f);
+    }
+}
+
+/* Encode img as PNG through a temporary file (image_write is the project's
+ * only PNG encoder) and return its bytes. */
+static unsigned char *
+png_bytes(const struct image *img, const char *dir, const char *name, size_t *n, struct diag *err)
+{
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s.png", dir, name);
+    if (!image_write(img, path, err)) {
+        return NULL;
+    }
+    FILE *f = fopen(path, "rb");
+    unsigned char *buf = NULL;
+    long len = -1;
+    if (f && fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0) {
+        buf = malloc((size_t)len);
+        if (buf && fread(buf, 1, (size_t)len, f) != (size_t)len) {
+            free(buf);
+            buf = NULL;
+        }
+    }
+    if (f) {
+        fclose(f);
+    }
+    remove(path);
+    if (!buf) {
+        diag_set(err, path, 0, 0, "cannot read back the encoded image");
+        return NULL;
+    }
+    *n = (size_t)len;
+    return buf;
+}
+
+static const char style[] =
+    "body{font-family:system-ui,-apple-system,'Segoe UI',sans-serif;margin:0 auto;padding:12px;"
+    "max-width:1200px;color:#111;background:#fff;line-height:1.4}\n"
+    "h1{font-size:1.3em;margin:.2em 0 .6em;overflow-wrap:anywhere}\n"
+    ".verdict{padding:10px 14px;border-radius:6px;font-size:1.1em;margin:0 0 12px}\n"
+    ".agree{background:#c8ecc8;border:3px solid #1b7a1b}\n"
+    ".biased{background:#f8c8c0;border:3px solid #b0201a}\n"
+    ".untested{background:#e4e4e4;border:3px solid #666}\n"
+    ".row{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}\n"
+    "figure{margin:0;flex:1 1 300px;min-width:0}\n"
+    "figcaption{font-weight:600;margin:4px 0}\n"
+    "img{display:block;width:100%;height:auto;image-rendering:pixelated}\n"
+    ".stack{position:relative}\n"
+    ".stack img.over{position:absolute;top:0;left:0;clip-path:inset(0 50% 0 0)}\n"
+    "input[type=range]{width:100%}\n"
+    "button{font-size:1em;padding:4px 10px;margin:4px 0}\n"
+    "table{border-collapse:collapse;margin:8px 0;max-width:100%}\n"
+    "td,th{padding:3px 10px 3px 0;text-align:left;vertical-align:top;border-bottom:1px solid #ddd;"
+    "overflow-wrap:anywhere}\n"
+    "ul{padding-left:1.2em}\n"
+    "p.note{color:#444;font-size:.92em}\n";
+
+/* The slider moves the render's clipping edge; the button swaps which
+ * image is shown whole. */
+static const char script[] =
+    "var s=document.getElementById('slide'),o=document.getElementById('over');\n"
+    "function clip(){o.style.clipPath='inset(0 '+(100-s.value)+'% 0 0)';}\n"
+    "s.addEventListener('input',clip);\n"
+    "document.getElementById('flip').addEventListener('click',function(){"
+    "s.value=s.value>50?0:100;clip();});\n";
+
+static void
+put_image(FILE *f, const unsigned char *png, size_t n, const char *cls, const char *id, const char *alt)
+{
+    fprintf(f, "<img%s%s%s%s%s alt=\"%s\" src=\"data:image/png;base64,", cls ? " class=\"" : "", cls ? cls : "",
+            cls ? "\"" : "", id ? " id=\"" : "", id ? id : "", alt);
+    put_base64(f, png, n);
+    fputs(id ? "\">" : "\">", f);
+}
+
+static void
+put_numbers(FILE *f, const struct comparison *c)
+{
+    const struct metrics *m = &c->m;
+    fputs("<h2>Numbers</h2>\n<table>\n", f);
+    fprintf(f, "<tr><th>relMSE</th><td>%.4g</td></tr>\n<tr><th>RMSE</th><td>%.4g</td></tr>\n", m->relmse, m->rmse);
+    fprintf(f, "<tr><th>mean R, G, B</th><td>render %.5g, %.5g, %.5g<br>reference %.5g, %.5g, %.5g</td></tr>\n",
+            m->mean[0], m->mean[1], m->mean[2], m->ref_mean[0], m->ref_mean[1], m->ref_mean[2]);
+    if (m->n_nonfinite) {
+        fprintf(f, "<tr><th>NaN or Inf</th><td>%zu pixels</td></tr>\n", m->n_nonfinite);
+    }
+    fprintf(f, "<tr><th>size</th><td>%d &times; %d pixels</td></tr>\n", c->render.width, c->render.height);
+    if (c->noise != NOISE_NONE) {
+        fprintf(f,
+                "<tr><th>test</th><td>%d blocks of %d&times;%d pixels, 3 channels each, every test at "
+                "level %.2g (family level %g, Sidak-corrected); noise from %s</td></tr>\n",
+                c->blocks.n_blocks, c->block_size, c->block_size, c->level, c->alpha,
+                c->noise == NOISE_RENDERS ? "the spread of the renders" : "the variance image");
+    }
+    fputs("<tr><th>render</th><td>", f);
+    for (int j = 0; j < c->k; j++) {
+        put_escaped(f, c->render_paths[j]);
+        fputs(j + 1 < c->k ? "<br>" : "", f);
+    }
+    fputs("</td></tr>\n<tr><th>reference</th><td>", f);
+    put_escaped(f, c->reference_path);
+    fputs("</td></tr>\n</table>\n", f);
+}
+
+static void
+put_failing(FILE *f, const struct comparison *c)
+{
+    if (c->n_failing == 0) {
+        return;
+    }
+    fprintf(f, "<h2>Failing blocks (%d)</h2>\n<ul>\n", c->n_failing);
+    for (int i = 0; i < c->n_failing && i < 100; i++) {
+        char line[256];
+        compare_describe_block(line, sizeof line, &c->blocks.blocks[c->failing[i]]);
+        fputs("<li>", f);
+        put_escaped(f, line);
+        fputs("</li>\n", f);
+    }
+    if (c->n_failing > 100) {
+        fprintf(f, "<li>... and %d more</li>\n", c->n_failing - 100);
+    }
+    fputs("</ul>\n", f);
+}
+
+static const char how_to_read[] =
+    "<h2>How to read this page</h2>\n"
+    "<p class=\"note\">The error map shows each pixel's signed relative error of luminance: blue where the "
+    "render is darker than the reference, red where it is brighter, white where they agree; green marks "
+    "NaN or infinite pixels.  Noise looks like salt and pepper that fades with more samples.  A bias "
+    "(a missing cosine, a wrong pdf, light leaking through an offset) is a region of one colour that "
+    "stays when the samples grow; the block test finds those and outlines them in black.  "
+    "'Consistent' means no block differs by more than its noise explains at the stated level: "
+    "with too few samples a small bias can still hide in the noise.</p>\n";
+
+static void
+write_page(FILE *f, const struct comparison *c, unsigned char *const png[3], const size_t n[3])
+{
+    const char *title = c->title ? c->title : c->render_paths[0];
+    fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>compare: ",
+          f);
+    put_escaped(f, title);
+    fprintf(f, "</title>\n<style>\n%s</style>\n</head>\n<body>\n<h1>", style);
+    put_escaped(f, title);
+    const char *cls = c->noise == NOISE_NONE && c->status == COMPARE_AGREE ? "untested"
+                      : c->status == COMPARE_AGREE                          ? "agree"
+                                                                            : "biased";
+    fprintf(f, "</h1>\n<p class=\"verdict %s\" id=\"verdict\">", cls);
+    put_escaped(f, c->verdict);
+    fputs("</p>\n<div class=\"row\">\n<figure><figcaption>Render</figcaption>", f);
+    put_image(f, png[0], n[0], NULL, NULL, "render");
+    fputs("</figure>\n<figure><figcaption>Reference</figcaption>", f);
+    put_image(f, png[1], n[1], NULL, NULL, "reference");
+    fputs("</figure>\n<figure><figcaption>Error map</figcaption>", f);
+    put_image(f, png[2], n[2], NULL, NULL, "error map");
+    fputs("</figure>\n</div>\n<h2>Render over reference</h2>\n"
+          "<p class=\"note\">Left of the edge: the render; right: the reference.  Drag the slider, or "
+          "flip between them.</p>\n<div class=\"row\"><figure><div class=\"stack\">",
+          f);
+    put_image(f, png[1], n[1], NULL, NULL, "reference");
+    put_image(f, png[0], n[0], "over", "over", "render");
+    fputs("</div>\n<input type=\"range\" id=\"slide\" min=\"0\" max=\"100\" value=\"50\" "
+          "aria-label=\"render or reference\">\n<button id=\"flip\" type=\"button\">flip</button>"
+          "</figure></div>\n",
+          f);
+    put_numbers(f, c);
+    put_failing(f, c);
+    fputs(how_to_read, f);
+    fprintf(f, "<script>\n%s</script>\n</body>\n</html>\n", script);
+}
+
+bool
+compare_write_html(const struct comparison *c, const struct image *map, const char *path, struct diag *err)
+{
+    const char *tmp = getenv("TMPDIR");
+    char dir[4096];
+    snprintf(dir, sizeof dir, "%s/compare.XXXXXX", tmp && *tmp ? tmp : "/tmp");
+    if (!mkdtemp(dir)) {
+        diag_set(err, dir, 0, 0, "cannot create a temporary directory");
+        return false;
+    }
+    static const char *const names[3] = {"render", "reference", "map"};
+    const struct image *images[3] = {&c->render, &c->reference, map};
+    unsigned char *png[3] = {NULL, NULL, NULL};
+    size_t n[3] = {0, 0, 0};
+    bool ok = true;
+    for (int i = 0; i < 3 && ok; i++) {
+        png[i] = png_bytes(images[i], dir, names[i], &n[i], err);
+        ok = png[i] != NULL;
+    }
+    rmdir(dir);
+    struct atomic_file af;
+    if (ok && atomic_file_open(&af, path, err)) {
+        write_page(af.f, c, png, n);
+        ok = atomic_file_commit(&af, err);
+    } else {
+        ok = false;
+    }
+    for (int i = 0; i < 3; i++) {
+        free(png[i]);
+    }
+    return ok;
+}
