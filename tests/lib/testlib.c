@@ -213,6 +213,19 @@ test_run(const char *const argv[], char *output, size_t cap)
 }
 
 const char *
+test_tool_binary(const char *name)
+{
+    const char *buildroot = getenv("BUILDROOT");
+    char relative[256];
+    snprintf(relative, sizeof relative, "tools/%s", name);
+    if (buildroot && buildroot[0]) {
+        return intern_path(buildroot, relative); /* BUILDROOT ends in '/': a harmless "//" */
+    }
+    snprintf(relative, sizeof relative, "build/tools/%s", name);
+    return test_root_path(relative);
+}
+
+const char *
 test_render_binary(void)
 {
     const char *render = getenv("RENDER");

@@ -40,6 +40,11 @@ char *test_read_file(const char *path, size_t *len);
  * NUL-terminated) when output is not NULL. */
 int test_run(const char *const argv[], char *output, size_t cap);
 
+/* Path of a command-line tool of tests/tools/ (compare, merge, ...):
+ * $BUILDROOT/tools/NAME (tests/Makefile exports BUILDROOT), else
+ * root/build/tools/NAME.  The string stays valid until the program ends. */
+const char *test_tool_binary(const char *name);
+
 /* Path of the stage's render binary (environment RENDER); NULL if unset. */
 const char *test_render_binary(void);
 

@@ -10,7 +10,7 @@
  * the render is t-tested against the reference (metrics.h, stattest.h), at
  * the family level --alpha Sidak-corrected for the number of tests, and
  * the verdict names the blocks that fail.  Optional outputs: the error map
- * (--map, errmap.h) and a self-contained report page (--html, report.c).
+ * (--map, errmap.h) and a self-contained report page (--html, compare_report.c).
  * Exit status: 0 the images agree, 1 biased, 2 bad input or usage.
  */
 #include <errno.h>
@@ -19,7 +19,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compare.h"
+#include "compare_report.h"
 #include "errmap.h"
 #include "estimate.h"
 #include "imgread.h"

@@ -1,9 +1,9 @@
 /*
- * compare.h - what the compare tool found, for its text output (compare.c)
- * and its report page (report.c).
+ * compare_report.h - what the compare tool (tests/tools/compare.c) found,
+ * and its report page (compare_report.c).
  */
-#ifndef COMPARE_H
-#define COMPARE_H
+#ifndef COMPARE_REPORT_H
+#define COMPARE_REPORT_H
 
 #include <stdbool.h>
 #include <stdio.h>
@@ -71,4 +71,4 @@ void compare_describe_block(char *buf, size_t cap, const struct metrics_block *b
  * through a temporary file renamed into place. */
 bool compare_write_html(const struct comparison *c, const struct image *map, const char *path, struct diag *err);
 
-#endif /* COMPARE_H */
+#endif /* COMPARE_REPORT_H */

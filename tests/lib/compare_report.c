@@ -1,5 +1,5 @@
 /*
- * report.c - compare's report page: one self-contained HTML file.
+ * compare_report.c - compare's report page: one self-contained HTML file.
  *
  * The render, the reference and the error map are embedded as PNG data
  * URIs (RFC 2397; base64 of RFC 4648 section 4), so the page can be mailed
@@ -18,7 +18,7 @@
 #include <unistd.h>
 
 #include "atomic_file.h"
-#include "compare.h"
+#include "compare_report.h"
 
 static void
 put_escaped(FILE *f, const char *s)

@@ -1,0 +1,344 @@
+/*
+ * 07_compare.c - the compare and merge tools (tests/tools/) on real renders
+ * of the path tracer, against the Mitsuba references of three scenes
+ * (cornell_diffuse_area, cornell_specular_area, cornell_diffuse_point; the
+ * *_gi.pfm files box-downsampled to SIZE x SIZE, as in 07_reference.c).
+ *
+ *  - Two correct renders with different seeds: compare says "consistent"
+ *    (exit 0) in every scene.
+ *  - The same renders with a planted bias of 2% (both renders scaled by
+ *    1.02, then by 0.98, in one 16x16 block): compare says "biased" (exit
+ *    1), names that block, and that block only.  The block is the one the
+ *    two renders themselves measure most precisely (smallest relative
+ *    standard error), so the test does not depend on where a scene puts its
+ *    noise; a 2% bias there is many standard errors (printed).
+ *  - merge: MERGE_K renders of SPP / MERGE_K samples merge (spp from their
+ *    stats files) into an image that equals, within noise, one render of
+ *    SPP samples (block t-tests of their difference), and that passes
+ *    compare's block tests against the reference given merge's variance.
+ * All renders are SIZE x SIZE with fixed seeds: the outcome is the same on
+ * every run (the statistical level says how rarely a correct renderer would
+ * fail it: alpha = 0.01 per comparison).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "estimate.h"
+#include "metrics.h"
+#include "pathcheck.h"
+#include "stattest.h"
+#include "testlib.h"
+
+#define SIZE 64
+#define FACTOR (256 / SIZE)
+#if PATHCHECK_SANITIZED
+#define SPP 64
+#else
+#define SPP 256
+#endif
+#define BLOCK 16
+#define BIAS 0.02
+#define MERGE_K 4
+#define OUTPUT_CAP 16384
+
+struct case_ {
+    const char *name; /* a short name for the files */
+    const char *scene;
+    const char *reference;
+};
+
+static const struct case_ cases[] = {
+    {"area", "scenes/cornell_diffuse_area.scene", "cornell_diffuse_area_gi"},
+    {"specular", "scenes/cornell_specular_area.scene", "cornell_specular_area_gi"},
+    {"point", "scenes/cornell_diffuse_point.scene", "cornell_diffuse_point_gi"},
+};
+#define N_CASES (int)(sizeof cases / sizeof cases[0])
+
+/* tmp/<case>_<what>.<ext> */
+static const char *
+case_path(const struct case_ *c, const char *what, const char *ext)
+{
+    char name[128];
+    snprintf(name, sizeof name, "%s_%s.%s", c->name, what, ext);
+    return test_tmp_path(name);
+}
+
+/* Render to `path` (PFM) with its stats file beside it (path's stem
+ * .json), unless an earlier test of this program already did. */
+static bool
+render_to(const struct case_ *c, int spp, int seed, const char *path)
+{
+    if (test_file_exists(path)) {
+        return true;
+    }
+    char spp_text[16], seed_text[16], stats[4096];
+    snprintf(spp_text, sizeof spp_text, "%d", spp);
+    snprintf(seed_text, sizeof seed_text, "%d", seed);
+    snprintf(stats, sizeof stats, "%.*s.json", (int)(strlen(path) - 4), path);
+    const char *const args[] = {"-W", "64", "-H", "64", "--spp", spp_text, "--seed", seed_text,
+                                "-o", path, "--stats", stats, NULL};
+    char output[OUTPUT_CAP];
+    int status = test_render(test_root_path(c->scene), args, output, sizeof output);
+    if (status != 0) {
+        printf("render of %s failed (status %d):\n%s\n", c->scene, status, output);
+    }
+    return status == 0;
+}
+
+/* The reference downsampled to SIZE, written to tmp, and its noise as
+ * compare's options. */
+static bool
+reference_to(const struct case_ *c, const char *path, char *rel_se, char *dof, size_t cap)
+{
+    struct pathcheck_reference ref;
+    if (!pathcheck_reference_load(c->reference, FACTOR, &ref)) {
+        return false;
+    }
+    struct diag err = {0};
+    bool ok = test_file_exists(path) || image_write(&ref.image, path, &err);
+    /* A downsampled pixel averages FACTOR^2 independent reference pixels. */
+    snprintf(rel_se, cap, "%.6g", ref.rel_se_pixel / FACTOR);
+    snprintf(dof, cap, "%.6g", ref.dof);
+    pathcheck_reference_free(&ref);
+    if (!ok) {
+        diag_print(stdout, &err, "error");
+    }
+    return ok;
+}
+
+/* Run compare with argv (NULL-terminated, without the program). */
+static int
+run_compare(const char *const *args, char *output, size_t cap)
+{
+    const char *argv[32];
+    int n = 0;
+    argv[n++] = test_tool_binary("compare");
+    for (int i = 0; args[i] && n < 31; i++) {
+        argv[n++] = args[i];
+    }
+    argv[n] = NULL;
+    return test_run(argv, output, cap);
+}
+
+/* The two renders and the reference of case c. */
+struct inputs {
+    const char *a, *b, *ref;
+    char rel_se[32], dof[32];
+};
+
+static bool
+prepare(const struct case_ *c, struct inputs *in)
+{
+    in->a = case_path(c, "seed101", "pfm");
+    in->b = case_path(c, "seed102", "pfm");
+    in->ref = case_path(c, "ref", "pfm");
+    return render_to(c, SPP, 101, in->a) && render_to(c, SPP, 102, in->b)
+           && reference_to(c, in->ref, in->rel_se, in->dof, sizeof in->rel_se);
+}
+
+TEST(two_correct_renders_are_consistent_with_the_reference)
+{
+    for (int i = 0; i < N_CASES; i++) {
+        struct inputs in;
+        if (!prepare(&cases[i], &in)) {
+            CHECK(false);
+            continue;
+        }
+        char output[OUTPUT_CAP];
+        const char *const args[] = {in.a, in.b, in.ref, "--ref-rel-se", in.rel_se, "--ref-dof", in.dof, NULL};
+        int status = run_compare(args, output, sizeof output);
+        printf("%s: exit %d: %s", cases[i].name, status, strstr(output, "verdict") ? strstr(output, "verdict") : output);
+        CHECK_MSG(status == 0, "%s", output);
+        CHECK(strstr(output, "consistent with the reference") != NULL);
+    }
+}
+
+/* The block whose mean the renders measure with the smallest relative SE
+ * (green channel), from their mean and per-pixel variance. */
+static int
+most_precise_block(const struct image *a, const struct image *b, const struct image *ref, struct metrics_block_stats *s)
+{
+    const struct image pair[2] = {*a, *b};
+    const double weights[2] = {1, 1};
+    struct image mean = {0}, variance = {0};
+    struct diag err = {0};
+    struct metrics_block_params params = {.block_size = BLOCK};
+    int best = -1;
+    if (estimate_combine(pair, weights, 2, &mean, &variance, &err)
+        && metrics_block_stats_variance(&mean, &variance, 1, ref, &params, s, &err)) {
+        double best_rel = INFINITY;
+        for (int i = 0; i < s->n_blocks; i++) {
+            const struct metrics_block *blk = &s->blocks[i];
+            double rel = sqrt(blk->var_mean[1]) / fabs(blk->mean[1]);
+            if (blk->mean[1] > 0 && rel < best_rel) {
+                best_rel = rel;
+                best = i;
+            }
+        }
+        printf("  most precise block: %d, relative SE %.3g%%: a %.0f%% bias is %.1f SE\n", best, 100 * best_rel,
+               100 * BIAS, BIAS / best_rel);
+    }
+    image_free(&mean);
+    image_free(&variance);
+    return best;
+}
+
+/* Copy of img with block blk scaled by `scale`, written to path. */
+static bool
+write_planted(const struct image *img, const struct metrics_block *blk, double scale, const char *path)
+{
+    struct image copy = {0};
+    struct diag err = {0};
+    bool ok = image_alloc(&copy, img->width, img->height, &err);
+    if (ok) {
+        memcpy(copy.rgb, img->rgb, (size_t)img->width * (size_t)img->height * 3 * sizeof(float));
+        for (int y = blk->y0; y < blk->y0 + blk->h; y++) {
+            for (int x = blk->x0; x < blk->x0 + blk->w; x++) {
+                float *p = image_pixel(&copy, x, y);
+                for (int ch = 0; ch < 3; ch++) {
+                    p[ch] = (float)(p[ch] * scale);
+                }
+            }
+        }
+        ok = image_write(&copy, path, &err);
+    }
+    if (!ok) {
+        diag_print(stdout, &err, "error");
+    }
+    image_free(&copy);
+    return ok;
+}
+
+static void
+check_planted(const struct case_ *c, const struct inputs *in, const struct image *a, const struct image *b,
+              const struct metrics_block *blk, double scale)
+{
+    const char *pa = case_path(c, scale > 1 ? "planted_up_a" : "planted_down_a", "pfm");
+    const char *pb = case_path(c, scale > 1 ? "planted_up_b" : "planted_down_b", "pfm");
+    if (!write_planted(a, blk, scale, pa) || !write_planted(b, blk, scale, pb)) {
+        CHECK(false);
+        return;
+    }
+    char output[OUTPUT_CAP], expected[128];
+    const char *const args[] = {pa, pb, in->ref, "--ref-rel-se", in->rel_se, "--ref-dof", in->dof, NULL};
+    int status = run_compare(args, output, sizeof output);
+    const char *verdict = strstr(output, "verdict");
+    printf("%s, block x %d, y %d scaled by %.2f: exit %d: %s", c->name, blk->x0, blk->y0, scale, status,
+           verdict ? verdict : output);
+    CHECK_MSG(status == 1, "%s", output);
+    CHECK(strstr(output, "biased: 1 of 16 blocks") != NULL);
+    snprintf(expected, sizeof expected, "the block at x %d-%d, y %d-%d is", blk->x0, blk->x0 + blk->w - 1, blk->y0,
+             blk->y0 + blk->h - 1);
+    CHECK_MSG(strstr(output, expected) != NULL, "expected '%s' in\n%s", expected, output);
+    CHECK(strstr(output, scale > 1 ? "brighter than the reference" : "darker than the reference") != NULL);
+}
+
+TEST(a_planted_two_percent_bias_in_one_block_is_found_both_ways)
+{
+    for (int i = 0; i < N_CASES; i++) {
+        struct inputs in;
+        struct image a = {0}, b = {0}, ref = {0};
+        struct metrics_block_stats s = {0};
+        struct diag err = {0};
+        bool ok = prepare(&cases[i], &in) && image_read_pfm(in.a, &a, &err) && image_read_pfm(in.b, &b, &err)
+                  && image_read_pfm(in.ref, &ref, &err);
+        int best = ok ? most_precise_block(&a, &b, &ref, &s) : -1;
+        CHECK(best >= 0);
+        if (best >= 0) {
+            check_planted(&cases[i], &in, &a, &b, &s.blocks[best], 1 + BIAS);
+            check_planted(&cases[i], &in, &a, &b, &s.blocks[best], 1 - BIAS);
+        }
+        metrics_block_stats_free(&s);
+        image_free(&a);
+        image_free(&b);
+        image_free(&ref);
+    }
+}
+
+/* merge MERGE_K renders (spp from their stats files) into tmp files. */
+static bool
+merge_renders(const struct case_ *c, const char *merged, const char *variance, const char *stats)
+{
+    const char *argv[16] = {test_tool_binary("merge"), "-o", merged, "--variance", variance, "--stats", stats};
+    int n = 7;
+    for (int k = 0; k < MERGE_K; k++) {
+        char what[32];
+        snprintf(what, sizeof what, "part%d", k);
+        argv[n] = case_path(c, what, "pfm");
+        if (!render_to(c, SPP / MERGE_K, 201 + k, argv[n++])) {
+            return false;
+        }
+    }
+    argv[n] = NULL;
+    char output[OUTPUT_CAP];
+    int status = test_run(argv, output, sizeof output);
+    CHECK_MSG(status == 0, "merge: %s", output);
+    return status == 0;
+}
+
+/* The merged image against one long render: their difference has twice
+ * the merged image's variance (the same spp, independent samples). */
+static void
+check_equal_within_noise(const char *merged_path, const char *variance_path, const char *single_path)
+{
+    struct image merged = {0}, variance = {0}, single = {0};
+    struct diag err = {0};
+    struct metrics_block_stats s = {0};
+    struct metrics_block_params params = {.block_size = BLOCK};
+    bool ok = image_read_pfm(merged_path, &merged, &err) && image_read_pfm(variance_path, &variance, &err)
+              && image_read_pfm(single_path, &single, &err);
+    for (size_t i = 0; ok && i < (size_t)variance.width * (size_t)variance.height * 3; i++) {
+        variance.rgb[i] *= 2;
+    }
+    ok = ok && metrics_block_stats_variance(&merged, &variance, MERGE_K - 1, &single, &params, &s, &err);
+    CHECK(ok);
+    if (ok) {
+        double min_p = 1;
+        size_t rejected = metrics_block_rejections(&s, PATHCHECK_ALPHA, &min_p);
+        printf("  merged vs one render of %d spp: %d block tests, min p %.3g, %zu rejected\n", SPP,
+               3 * s.n_blocks, min_p, rejected);
+        CHECK(rejected == 0);
+        double mean_m[3], mean_s[3];
+        metrics_mean(&merged, NULL, mean_m);
+        metrics_mean(&single, NULL, mean_s);
+        CHECK_NEAR(mean_m[1] / mean_s[1], 1, 0.02);
+    }
+    metrics_block_stats_free(&s);
+    image_free(&merged);
+    image_free(&variance);
+    image_free(&single);
+}
+
+TEST(merged_renders_equal_one_long_render_and_pass_the_block_tests)
+{
+    for (int i = 0; i < N_CASES; i++) {
+        const struct case_ *c = &cases[i];
+        struct inputs in;
+        const char *merged = case_path(c, "merged", "pfm");
+        const char *variance = case_path(c, "merged_variance", "pfm");
+        const char *stats = case_path(c, "merged_stats", "json");
+        const char *single = case_path(c, "single", "pfm");
+        if (!prepare(c, &in) || !merge_renders(c, merged, variance, stats) || !render_to(c, SPP, 301, single)) {
+            CHECK(false);
+            continue;
+        }
+        double spp = 0;
+        CHECK(test_json_number(stats, "spp", &spp) && spp == SPP);
+        check_equal_within_noise(merged, variance, single);
+        char output[OUTPUT_CAP], dof[16];
+        snprintf(dof, sizeof dof, "%d", MERGE_K - 1);
+        const char *const args[] = {merged, "--variance", variance, "--variance-dof", dof, in.ref,
+                                    "--ref-rel-se", in.rel_se, "--ref-dof", in.dof, NULL};
+        int status = run_compare(args, output, sizeof output);
+        const char *verdict = strstr(output, "verdict");
+        printf("%s merged: exit %d: %s", c->name, status, verdict ? verdict : output);
+        CHECK_MSG(status == 0, "%s", output);
+    }
+}
+
+TEST_MAIN(
+    TEST_ENTRY(two_correct_renders_are_consistent_with_the_reference),
+    TEST_ENTRY(a_planted_two_percent_bias_in_one_block_is_found_both_ways),
+    TEST_ENTRY(merged_renders_equal_one_long_render_and_pass_the_block_tests))
