@@ -429,10 +429,13 @@ print_text(const struct comparison *c)
     if (c->worst >= 0) {
         int bs = c->block_size, bx = (c->render.width + bs - 1) / bs;
         int x0 = (c->worst % bx) * bs, y0 = (c->worst / bx) * bs;
-        printf("worst      the block at x %d-%d, y %d-%d: luminance %.2g%% %s\n", x0,
-               (x0 + bs < c->render.width ? x0 + bs : c->render.width) - 1, y0,
-               (y0 + bs < c->render.height ? y0 + bs : c->render.height) - 1, fabs(100 * c->worst_error),
-               c->worst_error < 0 ? "darker" : "brighter");
+        printf("worst      the block at x %d-%d, y %d-%d: ", x0, (x0 + bs < c->render.width ? x0 + bs : c->render.width) - 1,
+               y0, (y0 + bs < c->render.height ? y0 + bs : c->render.height) - 1);
+        if (isfinite(c->worst_error)) {
+            printf("luminance %.2g%% %s\n", fabs(100 * c->worst_error), c->worst_error < 0 ? "darker" : "brighter");
+        } else {
+            printf("NaN or infinite pixels\n");
+        }
     }
     if (c->noise != NOISE_NONE) {
         printf("noise      %s\n", c->noise == NOISE_RENDERS ? "from the spread of the renders" : "from the variance image");

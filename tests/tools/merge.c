@@ -223,6 +223,11 @@ merge(struct args *a, struct diag *err)
         weights[i] = a->inputs[i].spp;
         total += weights[i];
         ok = imgread(a->inputs[i].path, &images[i], err);
+        if (ok && (images[i].width != images[0].width || images[i].height != images[0].height)) {
+            diag_set(err, a->inputs[i].path, 0, 0, "the image is %dx%d but %s is %dx%d", images[i].width,
+                     images[i].height, a->inputs[0].path, images[0].width, images[0].height);
+            ok = false;
+        }
     }
     ok = ok && estimate_combine(images, weights, a->n, &mean, a->variance ? &variance : NULL, err);
     ok = ok && image_write(&mean, a->output, err);

@@ -1,0 +1,137 @@
+/*
+ * test_merge.c - the merge tool (tests/tools/merge.c) on small synthetic
+ * images: the weighted mean and variance exactly, spp from the command
+ * line and from stats files, merges of merges, and what it refuses.  Real
+ * renders are merged in tests/stage/07_compare.c.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "check.h"
+#include "image.h"
+#include "testlib.h"
+
+#define CAP 4096
+#define TMP(name) test_tmp_path(name)
+
+/* A 3x2 image whose every sample is `v` plus its index. */
+static bool
+write_flat(const char *name, float v)
+{
+    struct image img = {0};
+    struct diag err = {0};
+    bool ok = image_alloc(&img, 3, 2, &err);
+    for (int i = 0; ok && i < 18; i++) {
+        img.rgb[i] = v + (float)i;
+    }
+    ok = ok && image_write(&img, TMP(name), &err);
+    image_free(&img);
+    return ok;
+}
+
+static bool
+write_stats(const char *name, int spp, int seed)
+{
+    char text[128];
+    snprintf(text, sizeof text, "{\n  \"spp\": %d,\n  \"seed\": %d\n}\n", spp, seed);
+    return test_write_file(TMP(name), text);
+}
+
+static int
+merge(const char *const *args, char *out)
+{
+    const char *argv[32];
+    int n = 0;
+    argv[n++] = test_tool_binary("merge");
+    for (int i = 0; args[i] && n < 31; i++) {
+        argv[n++] = args[i];
+    }
+    argv[n] = NULL;
+    return test_run(argv, out, CAP);
+}
+
+/* Every sample of the image at path is `v` plus its index (within tol). */
+static void
+check_flat(const char *path, double v, double tol)
+{
+    struct image img = {0};
+    struct diag err = {0};
+    CHECK(image_read_pfm(path, &img, &err));
+    for (int i = 0; img.rgb && i < 18; i++) {
+        CHECK_NEAR(img.rgb[i], v + i, tol);
+    }
+    image_free(&img);
+}
+
+TEST(inputs_are_weighted_by_their_samples)
+{
+    char out[CAP];
+    CHECK(write_flat("a.pfm", 1) && write_flat("b.pfm", 3));
+    const char *const args[] = {"-o", TMP("m.pfm"), "--variance", TMP("v.pfm"), "--spp", "1", TMP("a.pfm"), "--spp",
+                                "3", TMP("b.pfm"), NULL};
+    CHECK_MSG(merge(args, out) == 0, "%s", out);
+    check_flat(TMP("m.pfm"), 2.5, 1e-5);
+    struct image var = {0};
+    struct diag err = {0};
+    CHECK(image_read_pfm(TMP("v.pfm"), &var, &err));
+    for (int i = 0; var.rgb && i < 18; i++) {
+        CHECK_NEAR(var.rgb[i], 0.75, 1e-6); /* (1 * 1.5^2 + 3 * 0.5^2) / (1 * 4) */
+    }
+    image_free(&var);
+}
+
+TEST(spp_comes_from_stats_files_and_merges_merge_again)
+{
+    char out[CAP];
+    CHECK(write_flat("r1.pfm", 0) && write_flat("r2.pfm", 2) && write_flat("r3.pfm", 10));
+    CHECK(write_stats("r1.json", 4, 1) && write_stats("r2.json", 4, 2) && write_stats("r3.pfm.json", 8, 3));
+    const char *const first[] = {"-o", TMP("m12.pfm"), "--stats", TMP("m12.json"), TMP("r1.pfm"), TMP("r2.pfm"),
+                                 NULL};
+    CHECK_MSG(merge(first, out) == 0, "%s", out);
+    double spp = 0, dof = 0;
+    CHECK(test_json_number(TMP("m12.json"), "spp", &spp) && spp == 8);
+    CHECK(test_json_number(TMP("m12.json"), "variance_dof", &dof) && dof == 1);
+    check_flat(TMP("m12.pfm"), 1, 1e-5);
+    /* The merge of the merge and r3 (8 + 8 spp) is the merge of all three. */
+    const char *const second[] = {"-o", TMP("all.pfm"), TMP("m12.pfm"), TMP("r3.pfm"), NULL};
+    CHECK_MSG(merge(second, out) == 0, "%s", out);
+    check_flat(TMP("all.pfm"), 5.5, 1e-5);
+}
+
+TEST(what_merge_refuses)
+{
+    char out[CAP];
+    CHECK(write_flat("s1.pfm", 0) && write_flat("s2.pfm", 1) && write_stats("s1.json", 4, 7)
+          && write_stats("s2.json", 4, 7));
+    struct image small = {0};
+    struct diag err = {0};
+    CHECK(image_alloc(&small, 2, 2, &err) && image_write(&small, TMP("small.pfm"), &err));
+    image_free(&small);
+    CHECK(write_flat("nostats.pfm", 0) && write_flat("png.png", 0));
+    const char *const same_seed[] = {"-o", TMP("x.pfm"), TMP("s1.pfm"), TMP("s2.pfm"), NULL};
+    const char *const no_spp[] = {"-o", TMP("x.pfm"), TMP("nostats.pfm"), TMP("s1.pfm"), NULL};
+    const char *const png_in[] = {"-o", TMP("x.pfm"), "--spp", "1", TMP("png.png"), TMP("s1.pfm"), NULL};
+    const char *const png_out[] = {"-o", TMP("x.png"), TMP("s1.pfm"), NULL};
+    const char *const sizes[] = {"-o", TMP("x.pfm"), "--spp", "2", TMP("small.pfm"), TMP("s1.pfm"), NULL};
+    const char *const *failures[] = {same_seed, no_spp, png_in, png_out, sizes};
+    for (size_t i = 0; i < sizeof failures / sizeof failures[0]; i++) {
+        int status = merge(failures[i], out);
+        CHECK_MSG(status == 1 && strstr(out, "error"), "case %zu: exit %d: %s", i, status, out);
+        CHECK(!test_file_exists(TMP("x.pfm")) && !test_file_exists(TMP("x.png")));
+    }
+    CHECK(strstr(out, "small.pfm") != NULL);
+    const char *const no_output[] = {TMP("s1.pfm"), NULL};
+    const char *const lone_variance[] = {"-o", TMP("x.pfm"), "--variance", TMP("v.pfm"), TMP("s1.pfm"), NULL};
+    const char *const bad_spp[] = {"-o", TMP("x.pfm"), "--spp", "0", TMP("s1.pfm"), NULL};
+    const char *const *usage[] = {no_output, lone_variance, bad_spp};
+    for (size_t i = 0; i < sizeof usage / sizeof usage[0]; i++) {
+        CHECK_MSG(merge(usage[i], out) == 2, "usage case %zu: %s", i, out);
+    }
+    const char *const help[] = {"--help", NULL};
+    CHECK(merge(help, out) == 0 && strstr(out, "spp"));
+}
+
+TEST_MAIN(
+    TEST_ENTRY(inputs_are_weighted_by_their_samples),
+    TEST_ENTRY(spp_comes_from_stats_files_and_merges_merge_again),
+    TEST_ENTRY(what_merge_refuses))
