@@ -163,12 +163,16 @@ TEST(png_reader_reads_other_encoders_files)
         }
     }
     image_free(&img);
-    static const float palette[4][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {128 / 255.0f, 128 / 255.0f, 128 / 255.0f}};
+    static const float palette[4][3] =
+        {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {128 / 255.0f, 128 / 255.0f, 128 / 255.0f}};
     CHECK(imgread(test_root_path("tests/common/data/palette.png"), &img, &err));
     for (int y = 0; img.rgb && y < 16; y++) {
         for (int x = 0; x < 16; x++) {
             for (int c = 0; c < 3; c++) {
-                CHECK_NEAR(image_pixel(&img, x, y)[c], linear_from_srgb(palette[(x + y) % 4][c]), 1e-6);
+                CHECK_NEAR(
+                    image_pixel(&img, x, y)[c],
+                    linear_from_srgb(palette[(x + y) % 4][c]),
+                    1e-6);
             }
         }
     }
@@ -207,7 +211,8 @@ static void
 fix_idat_crc(unsigned char *png, size_t n)
 {
     for (size_t i = 8; i + 12 <= n;) {
-        size_t len = (size_t)png[i] << 24 | (size_t)png[i + 1] << 16 | (size_t)png[i + 2] << 8 | png[i + 3];
+        size_t len =
+            (size_t)png[i] << 24 | (size_t)png[i + 1] << 16 | (size_t)png[i + 2] << 8 | png[i + 3];
         if (len > n - i - 12) {
             return;
         }
@@ -228,6 +233,7 @@ TEST(bad_image_files_are_refused_with_a_message)
     size_t n = 0;
     char *png = test_read_file(test_root_path("tests/common/data/rgb16.png"), &n);
     CHECK(png != NULL);
+
     struct {
         const char *name;
         size_t len; /* bytes of the good file kept */
@@ -239,6 +245,7 @@ TEST(bad_image_files_are_refused_with_a_message)
         {"crc.png", n, 20}, /* inside IHDR: its checksum fails */
         {"data.png", n, 60}, /* inside IDAT's zlib stream (its CRC fixed) */
     };
+
     for (size_t i = 0; png && i < sizeof cases / sizeof cases[0]; i++) {
         char *copy = malloc(n);
         memcpy(copy, png, n);
@@ -253,7 +260,11 @@ TEST(bad_image_files_are_refused_with_a_message)
         }
         struct diag err = {0};
         CHECK_MSG(!imgread(TMP(cases[i].name), &img, &err), "%s was accepted", cases[i].name);
-        CHECK_MSG(strstr(err.file, cases[i].name) != NULL && err.msg[0], "%s: '%s'", cases[i].name, err.msg);
+        CHECK_MSG(
+            strstr(err.file, cases[i].name) != NULL && err.msg[0],
+            "%s: '%s'",
+            cases[i].name,
+            err.msg);
         printf("%s: %s\n", cases[i].name, err.msg);
         free(copy);
     }
@@ -299,7 +310,13 @@ TEST(renders_with_only_noise_are_consistent_for_many_seeds)
         CHECK(write_set(2 * seed, 2 * seed + 1, 0, 0, 1));
         const char *const args[] = {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), NULL};
         int status = compare(args, out);
-        CHECK_MSG(status == 0, "seeds %d, %d: exit %d\n%s", (int)(2 * seed), (int)(2 * seed + 1), status, out);
+        CHECK_MSG(
+            status == 0,
+            "seeds %d, %d: exit %d\n%s",
+            (int)(2 * seed),
+            (int)(2 * seed + 1),
+            status,
+            out);
     }
     CHECK(strstr(out, "consistent with the reference (noise only)") != NULL);
     CHECK(strstr(out, "15 blocks of 16x16") != NULL); /* 5 x 3, the right and bottom ones cut */
@@ -316,11 +333,25 @@ TEST(a_planted_two_percent_bias_is_found_and_named)
             CHECK(write_set(100 + bx, 200 + bx, bx, by, 1 + sign * 0.02 * (bx == 4 ? 2 : 1)));
             const char *const args[] = {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), NULL};
             int status = compare(args, out);
-            int x1 = bx * 16 + 15 < W ? bx * 16 + 15 : W - 1, y1 = by * 16 + 15 < H ? by * 16 + 15 : H - 1;
-            snprintf(expected, sizeof expected, "the block at x %d-%d, y %d-%d is", bx * 16, x1, by * 16, y1);
-            CHECK_MSG(status == 1 && strstr(out, expected) && strstr(out, "biased: 1 of 15 blocks")
-                          && strstr(out, sign > 0 ? "brighter than" : "darker than"),
-                      "block %d, %d, sign %d: exit %d\n%s", bx, by, sign, status, out);
+            int x1 = bx * 16 + 15 < W ? bx * 16 + 15 : W - 1,
+                y1 = by * 16 + 15 < H ? by * 16 + 15 : H - 1;
+            snprintf(
+                expected,
+                sizeof expected,
+                "the block at x %d-%d, y %d-%d is",
+                bx * 16,
+                x1,
+                by * 16,
+                y1);
+            CHECK_MSG(
+                status == 1 && strstr(out, expected) && strstr(out, "biased: 1 of 15 blocks")
+                    && strstr(out, sign > 0 ? "brighter than" : "darker than"),
+                "block %d, %d, sign %d: exit %d\n%s",
+                bx,
+                by,
+                sign,
+                status,
+                out);
         }
     }
     printf("%s", out);
@@ -409,7 +440,8 @@ TEST(bad_input_exits_2)
     const char *const one[] = {TMP("a.pfm"), NULL};
     const char *const option[] = {"--frobnicate", TMP("a.pfm"), TMP("ref.pfm"), NULL};
     const char *const number[] = {"--block", "0", TMP("a.pfm"), TMP("ref.pfm"), NULL};
-    const char *const variance[] = {TMP("a.pfm"), TMP("b.pfm"), "--variance", TMP("a.pfm"), TMP("ref.pfm"), NULL};
+    const char *const variance[] =
+        {TMP("a.pfm"), TMP("b.pfm"), "--variance", TMP("a.pfm"), TMP("ref.pfm"), NULL};
     const char *const *cases[] = {missing, size, one, option, number, variance};
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         int status = compare(cases[i], out);
@@ -435,8 +467,15 @@ TEST(error_map_shows_sign_outlines_failing_blocks_and_has_a_legend)
 {
     char out[CAP];
     CHECK(write_set(11, 12, 1, 1, 1.3)); /* block x 16-31, y 16-31, 30% brighter */
-    const char *const args[] = {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), "--map", TMP("map.png"), "--range", "0.5",
-                                NULL};
+    const char *const args[] = {
+        TMP("a.pfm"),
+        TMP("b.pfm"),
+        TMP("ref.pfm"),
+        "--map",
+        TMP("map.png"),
+        "--range",
+        "0.5",
+        NULL};
     CHECK(compare(args, out) == 1);
     struct image map = {0};
     struct diag err = {0};
@@ -475,8 +514,15 @@ TEST(report_page_is_one_self_contained_file)
 {
     char out[CAP];
     CHECK(write_set(11, 12, 1, 1, 1.3));
-    const char *const args[] = {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), "--html", TMP("page.html"), "--title",
-                                "lab <07> & \"friends\"", NULL};
+    const char *const args[] = {
+        TMP("a.pfm"),
+        TMP("b.pfm"),
+        TMP("ref.pfm"),
+        "--html",
+        TMP("page.html"),
+        "--title",
+        "lab <07> & \"friends\"",
+        NULL};
     CHECK(compare(args, out) == 1);
     size_t n = 0;
     char *html = test_read_file(TMP("page.html"), &n);
@@ -490,8 +536,10 @@ TEST(report_page_is_one_self_contained_file)
         CHECK_MSG(strncmp(p, "src=\"data:image/png;base64,", 27) == 0, "%.60s", p);
     }
     CHECK(images == 5); /* render, reference, map; reference and render of the slider */
-    CHECK(strstr(html, "http:") == NULL && strstr(html, "https:") == NULL && strstr(html, "<link") == NULL
-          && strstr(html, "@import") == NULL && strstr(html, "url(") == NULL);
+    CHECK(
+        strstr(html, "http:") == NULL && strstr(html, "https:") == NULL
+        && strstr(html, "<link") == NULL && strstr(html, "@import") == NULL
+        && strstr(html, "url(") == NULL);
     CHECK(strstr(html, "lab &lt;07&gt; &amp; &quot;friends&quot;") && !strstr(html, "<07>"));
     CHECK(strstr(html, "biased: 1 of 15 blocks") && strstr(html, "x 16-31, y 16-31"));
     CHECK(strstr(html, "name=\"viewport\""));

@@ -67,8 +67,18 @@ TEST(inputs_are_weighted_by_their_samples)
 {
     char out[CAP];
     CHECK(write_flat("a.pfm", 1) && write_flat("b.pfm", 3));
-    const char *const args[] = {"-o", TMP("m.pfm"), "--variance", TMP("v.pfm"), "--spp", "1", TMP("a.pfm"), "--spp",
-                                "3", TMP("b.pfm"), NULL};
+    const char *const args[] = {
+        "-o",
+        TMP("m.pfm"),
+        "--variance",
+        TMP("v.pfm"),
+        "--spp",
+        "1",
+        TMP("a.pfm"),
+        "--spp",
+        "3",
+        TMP("b.pfm"),
+        NULL};
     CHECK_MSG(merge(args, out) == 0, "%s", out);
     check_flat(TMP("m.pfm"), 2.5, 1e-5);
     struct image var = {0};
@@ -84,9 +94,11 @@ TEST(spp_comes_from_stats_files_and_merges_merge_again)
 {
     char out[CAP];
     CHECK(write_flat("r1.pfm", 0) && write_flat("r2.pfm", 2) && write_flat("r3.pfm", 10));
-    CHECK(write_stats("r1.json", 4, 1) && write_stats("r2.json", 4, 2) && write_stats("r3.pfm.json", 8, 3));
-    const char *const first[] = {"-o", TMP("m12.pfm"), "--stats", TMP("m12.json"), TMP("r1.pfm"), TMP("r2.pfm"),
-                                 NULL};
+    CHECK(
+        write_stats("r1.json", 4, 1) && write_stats("r2.json", 4, 2)
+        && write_stats("r3.pfm.json", 8, 3));
+    const char *const first[] =
+        {"-o", TMP("m12.pfm"), "--stats", TMP("m12.json"), TMP("r1.pfm"), TMP("r2.pfm"), NULL};
     CHECK_MSG(merge(first, out) == 0, "%s", out);
     double spp = 0, dof = 0;
     CHECK(test_json_number(TMP("m12.json"), "spp", &spp) && spp == 8);
@@ -101,8 +113,9 @@ TEST(spp_comes_from_stats_files_and_merges_merge_again)
 TEST(what_merge_refuses)
 {
     char out[CAP];
-    CHECK(write_flat("s1.pfm", 0) && write_flat("s2.pfm", 1) && write_stats("s1.json", 4, 7)
-          && write_stats("s2.json", 4, 7));
+    CHECK(
+        write_flat("s1.pfm", 0) && write_flat("s2.pfm", 1) && write_stats("s1.json", 4, 7)
+        && write_stats("s2.json", 4, 7));
     struct image small = {0};
     struct diag err = {0};
     CHECK(image_alloc(&small, 2, 2, &err) && image_write(&small, TMP("small.pfm"), &err));
@@ -110,9 +123,11 @@ TEST(what_merge_refuses)
     CHECK(write_flat("nostats.pfm", 0) && write_flat("png.png", 0));
     const char *const same_seed[] = {"-o", TMP("x.pfm"), TMP("s1.pfm"), TMP("s2.pfm"), NULL};
     const char *const no_spp[] = {"-o", TMP("x.pfm"), TMP("nostats.pfm"), TMP("s1.pfm"), NULL};
-    const char *const png_in[] = {"-o", TMP("x.pfm"), "--spp", "1", TMP("png.png"), TMP("s1.pfm"), NULL};
+    const char *const png_in[] =
+        {"-o", TMP("x.pfm"), "--spp", "1", TMP("png.png"), TMP("s1.pfm"), NULL};
     const char *const png_out[] = {"-o", TMP("x.png"), TMP("s1.pfm"), NULL};
-    const char *const sizes[] = {"-o", TMP("x.pfm"), "--spp", "2", TMP("small.pfm"), TMP("s1.pfm"), NULL};
+    const char *const sizes[] =
+        {"-o", TMP("x.pfm"), "--spp", "2", TMP("small.pfm"), TMP("s1.pfm"), NULL};
     const char *const *failures[] = {same_seed, no_spp, png_in, png_out, sizes};
     for (size_t i = 0; i < sizeof failures / sizeof failures[0]; i++) {
         int status = merge(failures[i], out);
@@ -121,7 +136,8 @@ TEST(what_merge_refuses)
     }
     CHECK(strstr(out, "small.pfm") != NULL);
     const char *const no_output[] = {TMP("s1.pfm"), NULL};
-    const char *const lone_variance[] = {"-o", TMP("x.pfm"), "--variance", TMP("v.pfm"), TMP("s1.pfm"), NULL};
+    const char *const lone_variance[] =
+        {"-o", TMP("x.pfm"), "--variance", TMP("v.pfm"), TMP("s1.pfm"), NULL};
     const char *const bad_spp[] = {"-o", TMP("x.pfm"), "--spp", "0", TMP("s1.pfm"), NULL};
     const char *const *usage[] = {no_output, lone_variance, bad_spp};
     for (size_t i = 0; i < sizeof usage / sizeof usage[0]; i++) {

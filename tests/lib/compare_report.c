@@ -25,11 +25,20 @@ put_escaped(FILE *f, const char *s)
 {
     for (; *s; s++) {
         switch (*s) {
-        case '&': fputs("&amp;", f); break;
-        case '<': fputs("&lt;", f); break;
-        case '>': fputs("&gt;", f); break;
-        case '"': fputs("&quot;", f); break;
-        default: fputc(*s, f);
+        case '&':
+            fputs("&amp;", f);
+            break;
+        case '<':
+            fputs("&lt;", f);
+            break;
+        case '>':
+            fputs("&gt;", f);
+            break;
+        case '"':
+            fputs("&quot;", f);
+            break;
+        default:
+            fputc(*s, f);
         }
     }
 }
@@ -113,10 +122,23 @@ static const char script[] =
     "s.value=s.value>50?0:100;clip();});\n";
 
 static void
-put_image(FILE *f, const unsigned char *png, size_t n, const char *cls, const char *id, const char *alt)
+put_image(
+    FILE *f,
+    const unsigned char *png,
+    size_t n,
+    const char *cls,
+    const char *id,
+    const char *alt)
 {
-    fprintf(f, "<img%s%s%s%s%s alt=\"%s\" src=\"data:image/png;base64,", cls ? " class=\"" : "", cls ? cls : "",
-            cls ? "\"" : "", id ? " id=\"" : "", id ? id : "", alt);
+    fprintf(
+        f,
+        "<img%s%s%s%s%s alt=\"%s\" src=\"data:image/png;base64,",
+        cls ? " class=\"" : "",
+        cls ? cls : "",
+        cls ? "\"" : "",
+        id ? " id=\"" : "",
+        id ? id : "",
+        alt);
     put_base64(f, png, n);
     fputs(id ? "\">" : "\">", f);
 }
@@ -126,19 +148,39 @@ put_numbers(FILE *f, const struct comparison *c)
 {
     const struct metrics *m = &c->m;
     fputs("<h2>Numbers</h2>\n<table>\n", f);
-    fprintf(f, "<tr><th>relMSE</th><td>%.4g</td></tr>\n<tr><th>RMSE</th><td>%.4g</td></tr>\n", m->relmse, m->rmse);
-    fprintf(f, "<tr><th>mean R, G, B</th><td>render %.5g, %.5g, %.5g<br>reference %.5g, %.5g, %.5g</td></tr>\n",
-            m->mean[0], m->mean[1], m->mean[2], m->ref_mean[0], m->ref_mean[1], m->ref_mean[2]);
+    fprintf(
+        f,
+        "<tr><th>relMSE</th><td>%.4g</td></tr>\n<tr><th>RMSE</th><td>%.4g</td></tr>\n",
+        m->relmse,
+        m->rmse);
+    fprintf(
+        f,
+        "<tr><th>mean R, G, B</th><td>render %.5g, %.5g, %.5g<br>reference %.5g, %.5g, %.5g</td></tr>\n",
+        m->mean[0],
+        m->mean[1],
+        m->mean[2],
+        m->ref_mean[0],
+        m->ref_mean[1],
+        m->ref_mean[2]);
     if (m->n_nonfinite) {
         fprintf(f, "<tr><th>NaN or Inf</th><td>%zu pixels</td></tr>\n", m->n_nonfinite);
     }
-    fprintf(f, "<tr><th>size</th><td>%d &times; %d pixels</td></tr>\n", c->render.width, c->render.height);
+    fprintf(
+        f,
+        "<tr><th>size</th><td>%d &times; %d pixels</td></tr>\n",
+        c->render.width,
+        c->render.height);
     if (c->noise != NOISE_NONE) {
-        fprintf(f,
-                "<tr><th>test</th><td>%d blocks of %d&times;%d pixels, 3 channels each, every test at "
-                "level %.2g (family level %g, Sidak-corrected); noise from %s</td></tr>\n",
-                c->blocks.n_blocks, c->block_size, c->block_size, c->level, c->alpha,
-                c->noise == NOISE_RENDERS ? "the spread of the renders" : "the variance image");
+        fprintf(
+            f,
+            "<tr><th>test</th><td>%d blocks of %d&times;%d pixels, 3 channels each, every test at "
+            "level %.2g (family level %g, Sidak-corrected); noise from %s</td></tr>\n",
+            c->blocks.n_blocks,
+            c->block_size,
+            c->block_size,
+            c->level,
+            c->alpha,
+            c->noise == NOISE_RENDERS ? "the spread of the renders" : "the variance image");
     }
     fputs("<tr><th>render</th><td>", f);
     for (int j = 0; j < c->k; j++) {
@@ -184,15 +226,16 @@ static void
 write_page(FILE *f, const struct comparison *c, unsigned char *const png[3], const size_t n[3])
 {
     const char *title = c->title ? c->title : c->render_paths[0];
-    fputs("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-          "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>compare: ",
-          f);
+    fputs(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
+        "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>compare: ",
+        f);
     put_escaped(f, title);
     fprintf(f, "</title>\n<style>\n%s</style>\n</head>\n<body>\n<h1>", style);
     put_escaped(f, title);
     const char *cls = c->noise == NOISE_NONE && c->status == COMPARE_AGREE ? "untested"
-                      : c->status == COMPARE_AGREE                          ? "agree"
-                                                                            : "biased";
+                      : c->status == COMPARE_AGREE                         ? "agree"
+                                                                           : "biased";
     fprintf(f, "</h1>\n<p class=\"verdict %s\" id=\"verdict\">", cls);
     put_escaped(f, c->verdict);
     fputs("</p>\n<div class=\"row\">\n<figure><figcaption>Render</figcaption>", f);
@@ -201,16 +244,18 @@ write_page(FILE *f, const struct comparison *c, unsigned char *const png[3], con
     put_image(f, png[1], n[1], NULL, NULL, "reference");
     fputs("</figure>\n<figure><figcaption>Error map</figcaption>", f);
     put_image(f, png[2], n[2], NULL, NULL, "error map");
-    fputs("</figure>\n</div>\n<h2>Render over reference</h2>\n"
-          "<p class=\"note\">Left of the edge: the render; right: the reference.  Drag the slider, or "
-          "flip between them.</p>\n<div class=\"row\"><figure><div class=\"stack\">",
-          f);
+    fputs(
+        "</figure>\n</div>\n<h2>Render over reference</h2>\n"
+        "<p class=\"note\">Left of the edge: the render; right: the reference.  Drag the slider, or "
+        "flip between them.</p>\n<div class=\"row\"><figure><div class=\"stack\">",
+        f);
     put_image(f, png[1], n[1], NULL, NULL, "reference");
     put_image(f, png[0], n[0], "over", "over", "render");
-    fputs("</div>\n<input type=\"range\" id=\"slide\" min=\"0\" max=\"100\" value=\"50\" "
-          "aria-label=\"render or reference\">\n<button id=\"flip\" type=\"button\">flip</button>"
-          "</figure></div>\n",
-          f);
+    fputs(
+        "</div>\n<input type=\"range\" id=\"slide\" min=\"0\" max=\"100\" value=\"50\" "
+        "aria-label=\"render or reference\">\n<button id=\"flip\" type=\"button\">flip</button>"
+        "</figure></div>\n",
+        f);
     put_numbers(f, c);
     put_failing(f, c);
     fputs(how_to_read, f);
@@ -218,7 +263,11 @@ write_page(FILE *f, const struct comparison *c, unsigned char *const png[3], con
 }
 
 bool
-compare_write_html(const struct comparison *c, const struct image *map, const char *path, struct diag *err)
+compare_write_html(
+    const struct comparison *c,
+    const struct image *map,
+    const char *path,
+    struct diag *err)
 {
     const char *tmp = getenv("TMPDIR");
     char dir[4096];

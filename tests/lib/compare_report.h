@@ -69,6 +69,10 @@ void compare_describe_block(char *buf, size_t cap, const struct metrics_block *b
 
 /* Write the report page of c with the error map (already drawn) to path,
  * through a temporary file renamed into place. */
-bool compare_write_html(const struct comparison *c, const struct image *map, const char *path, struct diag *err);
+bool compare_write_html(
+    const struct comparison *c,
+    const struct image *map,
+    const char *path,
+    struct diag *err);
 
 #endif /* COMPARE_REPORT_H */

@@ -15,7 +15,14 @@ check_inputs(const struct image *images, const double *weights, int k, struct di
     }
     for (int j = 0; j < k; j++) {
         if (!(weights[j] > 0) || !isfinite(weights[j])) {
-            diag_set(err, NULL, 0, 0, "image %d: weight (samples per pixel) %g is not positive", j + 1, weights[j]);
+            diag_set(
+                err,
+                NULL,
+                0,
+                0,
+                "image %d: weight (samples per pixel) %g is not positive",
+                j + 1,
+                weights[j]);
             return false;
         }
         if (images[j].width != images[0].width || images[j].height != images[0].height) {
@@ -50,7 +57,8 @@ estimate_combine(
     if (variance) {
         *variance = (struct image){0};
     }
-    if (!check_inputs(images, weights, k, err) || !image_alloc(mean, images[0].width, images[0].height, err)
+    if (!check_inputs(images, weights, k, err)
+        || !image_alloc(mean, images[0].width, images[0].height, err)
         || (want_variance && !image_alloc(variance, mean->width, mean->height, err))) {
         image_free(mean);
         return false;

@@ -47,6 +47,7 @@ get_bits(struct bit_reader *r, int count)
 /* A canonical Huffman code: counts[len] codes of each length, symbols in
  * code order (RFC 1951 3.2.2). */
 #define HUFF_MAX_BITS 15
+
 struct huffman {
     uint16_t counts[HUFF_MAX_BITS + 1];
     uint16_t symbols[288];
@@ -106,20 +107,24 @@ struct inflate_out {
     size_t n, cap; /* cap: the most the caller will accept */
 };
 
-static const uint16_t length_base[29] = {3,  4,  5,  6,  7,  8,  9,  10, 11,  13,
-                                         15, 17, 19, 23, 27, 31, 35, 43, 51,  59,
+static const uint16_t length_base[29] = {3,  4,  5,  6,   7,   8,   9,   10,  11, 13,
+                                         15, 17, 19, 23,  27,  31,  35,  43,  51, 59,
                                          67, 83, 99, 115, 131, 163, 195, 227, 258};
-static const uint8_t length_extra[29] =
-    {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
-static const uint16_t dist_base[30] = {1,    2,    3,    4,    5,    7,     9,     13,    17,  25,
-                                       33,   49,   65,   97,   129,  193,   257,   385,   513, 769,
-                                       1025, 1537, 2049, 3073, 4097, 6145,  8193,  12289, 16385, 24577};
+static const uint8_t length_extra[29] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2,
+                                         2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
+static const uint16_t dist_base[30] = {
+    1,   2,   3,   4,   5,   7,    9,    13,   17,   25,   33,   49,   65,    97,    129,
+    193, 257, 385, 513, 769, 1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
 static const uint8_t dist_extra[30] = {0, 0, 0, 0, 1, 1, 2, 2,  3,  3,  4,  4,  5,  5,  6,
                                        6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
 
 /* The symbols of one compressed block up to its end code. */
 static const char *
-inflate_codes(struct bit_reader *r, struct inflate_out *o, const struct huffman *lit, const struct huffman *dist)
+inflate_codes(
+    struct bit_reader *r,
+    struct inflate_out *o,
+    const struct huffman *lit,
+    const struct huffman *dist)
 {
     for (;;) {
         int sym = huffman_decode(r, lit);
@@ -176,7 +181,8 @@ fixed_codes(struct huffman *lit, struct huffman *dist)
 static const char *
 dynamic_codes(struct bit_reader *r, struct huffman *lit, struct huffman *dist)
 {
-    static const uint8_t order[19] = {16, 17, 18, 0, 8, 7, 9, 6, 10, 5, 11, 4, 12, 3, 13, 2, 14, 1, 15};
+    static const uint8_t order[19] =
+        {16, 17, 18, 0, 8, 7, 9, 6, 10, 5, 11, 4, 12, 3, 13, 2, 14, 1, 15};
     int nlen = (int)get_bits(r, 5) + 257;
     int ndist = (int)get_bits(r, 5) + 1;
     int ncode = (int)get_bits(r, 4) + 4;
@@ -233,7 +239,8 @@ dynamic_codes(struct bit_reader *r, struct huffman *lit, struct huffman *dist)
 static const char *
 zlib_inflate(const uint8_t *data, size_t n, struct inflate_out *o)
 {
-    if (n < 6 || (data[0] & 0x0f) != 8 || ((data[0] << 8) | data[1]) % 31 != 0 || (data[1] & 0x20)) {
+    if (n < 6 || (data[0] & 0x0f) != 8 || ((data[0] << 8) | data[1]) % 31 != 0
+        || (data[1] & 0x20)) {
         return "not a zlib stream";
     }
     struct bit_reader r = {.data = data + 2, .n = n - 6};
@@ -447,7 +454,12 @@ read_chunks(const uint8_t *data, size_t n, struct png_header *h, uint8_t **idat,
 }
 
 bool
-imgread_png_memory(const unsigned char *data, size_t n, const char *path, struct image *out, struct diag *err)
+imgread_png_memory(
+    const unsigned char *data,
+    size_t n,
+    const char *path,
+    struct image *out,
+    struct diag *err)
 {
     *out = (struct image){0};
     struct png_header h = {0};
@@ -536,7 +548,12 @@ imgread(const char *path, struct image *out, struct diag *err)
 #ifdef HAVE_OPENEXR
         return imgread_exr(path, out, err);
 #else
-        diag_set(err, path, 0, 0, "this build has no OpenEXR (apt-get install libopenexr-dev, then make)");
+        diag_set(
+            err,
+            path,
+            0,
+            0,
+            "this build has no OpenEXR (apt-get install libopenexr-dev, then make)");
         return false;
 #endif
     case IMAGE_FORMAT_PNG: {

@@ -21,6 +21,11 @@
 bool imgread(const char *path, struct image *out, struct diag *err);
 
 /* Decode a PNG held in memory (n bytes); path names it in messages. */
-bool imgread_png_memory(const unsigned char *data, size_t n, const char *path, struct image *out, struct diag *err);
+bool imgread_png_memory(
+    const unsigned char *data,
+    size_t n,
+    const char *path,
+    struct image *out,
+    struct diag *err);
 
 #endif /* IMGREAD_H */

@@ -33,7 +33,10 @@ channel_slot(const char *name, bool grey)
     if (grey) {
         return strcmp(name, "Y") == 0 ? 0 : -1;
     }
-    return strcmp(name, "R") == 0 ? 0 : strcmp(name, "G") == 0 ? 1 : strcmp(name, "B") == 0 ? 2 : -1;
+    return strcmp(name, "R") == 0   ? 0
+           : strcmp(name, "G") == 0 ? 1
+           : strcmp(name, "B") == 0 ? 2
+                                    : -1;
 }
 
 /* Whether the part has R, G and B (*grey false) or Y (*grey true). */

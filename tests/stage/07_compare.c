@@ -77,8 +77,20 @@ render_to(const struct case_ *c, int spp, int seed, const char *path)
     snprintf(spp_text, sizeof spp_text, "%d", spp);
     snprintf(seed_text, sizeof seed_text, "%d", seed);
     snprintf(stats, sizeof stats, "%.*s.json", (int)(strlen(path) - 4), path);
-    const char *const args[] = {"-W", "64", "-H", "64", "--spp", spp_text, "--seed", seed_text,
-                                "-o", path, "--stats", stats, NULL};
+    const char *const args[] = {
+        "-W",
+        "64",
+        "-H",
+        "64",
+        "--spp",
+        spp_text,
+        "--seed",
+        seed_text,
+        "-o",
+        path,
+        "--stats",
+        stats,
+        NULL};
     char output[OUTPUT_CAP];
     int status = test_render(test_root_path(c->scene), args, output, sizeof output);
     if (status != 0) {
@@ -147,9 +159,14 @@ TEST(two_correct_renders_are_consistent_with_the_reference)
             continue;
         }
         char output[OUTPUT_CAP];
-        const char *const args[] = {in.a, in.b, in.ref, "--ref-rel-se", in.rel_se, "--ref-dof", in.dof, NULL};
+        const char *const args[] =
+            {in.a, in.b, in.ref, "--ref-rel-se", in.rel_se, "--ref-dof", in.dof, NULL};
         int status = run_compare(args, output, sizeof output);
-        printf("%s: exit %d: %s", cases[i].name, status, strstr(output, "verdict") ? strstr(output, "verdict") : output);
+        printf(
+            "%s: exit %d: %s",
+            cases[i].name,
+            status,
+            strstr(output, "verdict") ? strstr(output, "verdict") : output);
         CHECK_MSG(status == 0, "%s", output);
         CHECK(strstr(output, "consistent with the reference") != NULL);
     }
@@ -158,7 +175,11 @@ TEST(two_correct_renders_are_consistent_with_the_reference)
 /* The block whose mean the renders measure with the smallest relative SE
  * (green channel), from their mean and per-pixel variance. */
 static int
-most_precise_block(const struct image *a, const struct image *b, const struct image *ref, struct metrics_block_stats *s)
+most_precise_block(
+    const struct image *a,
+    const struct image *b,
+    const struct image *ref,
+    struct metrics_block_stats *s)
 {
     const struct image pair[2] = {*a, *b};
     const double weights[2] = {1, 1};
@@ -177,8 +198,12 @@ most_precise_block(const struct image *a, const struct image *b, const struct im
                 best = i;
             }
         }
-        printf("  most precise block: %d, relative SE %.3g%%: a %.0f%% bias is %.1f SE\n", best, 100 * best_rel,
-               100 * BIAS, BIAS / best_rel);
+        printf(
+            "  most precise block: %d, relative SE %.3g%%: a %.0f%% bias is %.1f SE\n",
+            best,
+            100 * best_rel,
+            100 * BIAS,
+            BIAS / best_rel);
     }
     image_free(&mean);
     image_free(&variance);
@@ -187,7 +212,11 @@ most_precise_block(const struct image *a, const struct image *b, const struct im
 
 /* Copy of img with block blk scaled by `scale`, written to path. */
 static bool
-write_planted(const struct image *img, const struct metrics_block *blk, double scale, const char *path)
+write_planted(
+    const struct image *img,
+    const struct metrics_block *blk,
+    double scale,
+    const char *path)
 {
     struct image copy = {0};
     struct diag err = {0};
@@ -212,8 +241,13 @@ write_planted(const struct image *img, const struct metrics_block *blk, double s
 }
 
 static void
-check_planted(const struct case_ *c, const struct inputs *in, const struct image *a, const struct image *b,
-              const struct metrics_block *blk, double scale)
+check_planted(
+    const struct case_ *c,
+    const struct inputs *in,
+    const struct image *a,
+    const struct image *b,
+    const struct metrics_block *blk,
+    double scale)
 {
     const char *pa = case_path(c, scale > 1 ? "planted_up_a" : "planted_down_a", "pfm");
     const char *pb = case_path(c, scale > 1 ? "planted_up_b" : "planted_down_b", "pfm");
@@ -222,17 +256,32 @@ check_planted(const struct case_ *c, const struct inputs *in, const struct image
         return;
     }
     char output[OUTPUT_CAP], expected[128];
-    const char *const args[] = {pa, pb, in->ref, "--ref-rel-se", in->rel_se, "--ref-dof", in->dof, NULL};
+    const char *const args[] =
+        {pa, pb, in->ref, "--ref-rel-se", in->rel_se, "--ref-dof", in->dof, NULL};
     int status = run_compare(args, output, sizeof output);
     const char *verdict = strstr(output, "verdict");
-    printf("%s, block x %d, y %d scaled by %.2f: exit %d: %s", c->name, blk->x0, blk->y0, scale, status,
-           verdict ? verdict : output);
+    printf(
+        "%s, block x %d, y %d scaled by %.2f: exit %d: %s",
+        c->name,
+        blk->x0,
+        blk->y0,
+        scale,
+        status,
+        verdict ? verdict : output);
     CHECK_MSG(status == 1, "%s", output);
     CHECK(strstr(output, "biased: 1 of 16 blocks") != NULL);
-    snprintf(expected, sizeof expected, "the block at x %d-%d, y %d-%d is", blk->x0, blk->x0 + blk->w - 1, blk->y0,
-             blk->y0 + blk->h - 1);
+    snprintf(
+        expected,
+        sizeof expected,
+        "the block at x %d-%d, y %d-%d is",
+        blk->x0,
+        blk->x0 + blk->w - 1,
+        blk->y0,
+        blk->y0 + blk->h - 1);
     CHECK_MSG(strstr(output, expected) != NULL, "expected '%s' in\n%s", expected, output);
-    CHECK(strstr(output, scale > 1 ? "brighter than the reference" : "darker than the reference") != NULL);
+    CHECK(
+        strstr(output, scale > 1 ? "brighter than the reference" : "darker than the reference")
+        != NULL);
 }
 
 TEST(a_planted_two_percent_bias_in_one_block_is_found_both_ways)
@@ -242,8 +291,8 @@ TEST(a_planted_two_percent_bias_in_one_block_is_found_both_ways)
         struct image a = {0}, b = {0}, ref = {0};
         struct metrics_block_stats s = {0};
         struct diag err = {0};
-        bool ok = prepare(&cases[i], &in) && image_read_pfm(in.a, &a, &err) && image_read_pfm(in.b, &b, &err)
-                  && image_read_pfm(in.ref, &ref, &err);
+        bool ok = prepare(&cases[i], &in) && image_read_pfm(in.a, &a, &err)
+                  && image_read_pfm(in.b, &b, &err) && image_read_pfm(in.ref, &ref, &err);
         int best = ok ? most_precise_block(&a, &b, &ref, &s) : -1;
         CHECK(best >= 0);
         if (best >= 0) {
@@ -261,7 +310,8 @@ TEST(a_planted_two_percent_bias_in_one_block_is_found_both_ways)
 static bool
 merge_renders(const struct case_ *c, const char *merged, const char *variance, const char *stats)
 {
-    const char *argv[16] = {test_tool_binary("merge"), "-o", merged, "--variance", variance, "--stats", stats};
+    const char *argv[16] =
+        {test_tool_binary("merge"), "-o", merged, "--variance", variance, "--stats", stats};
     int n = 7;
     for (int k = 0; k < MERGE_K; k++) {
         char what[32];
@@ -281,24 +331,40 @@ merge_renders(const struct case_ *c, const char *merged, const char *variance, c
 /* The merged image against one long render: their difference has twice
  * the merged image's variance (the same spp, independent samples). */
 static void
-check_equal_within_noise(const char *merged_path, const char *variance_path, const char *single_path)
+check_equal_within_noise(
+    const char *merged_path,
+    const char *variance_path,
+    const char *single_path)
 {
     struct image merged = {0}, variance = {0}, single = {0};
     struct diag err = {0};
     struct metrics_block_stats s = {0};
     struct metrics_block_params params = {.block_size = BLOCK};
-    bool ok = image_read_pfm(merged_path, &merged, &err) && image_read_pfm(variance_path, &variance, &err)
+    bool ok = image_read_pfm(merged_path, &merged, &err)
+              && image_read_pfm(variance_path, &variance, &err)
               && image_read_pfm(single_path, &single, &err);
     for (size_t i = 0; ok && i < (size_t)variance.width * (size_t)variance.height * 3; i++) {
         variance.rgb[i] *= 2;
     }
-    ok = ok && metrics_block_stats_variance(&merged, &variance, MERGE_K - 1, &single, &params, &s, &err);
+    ok = ok
+         && metrics_block_stats_variance(
+             &merged,
+             &variance,
+             MERGE_K - 1,
+             &single,
+             &params,
+             &s,
+             &err);
     CHECK(ok);
     if (ok) {
         double min_p = 1;
         size_t rejected = metrics_block_rejections(&s, PATHCHECK_ALPHA, &min_p);
-        printf("  merged vs one render of %d spp: %d block tests, min p %.3g, %zu rejected\n", SPP,
-               3 * s.n_blocks, min_p, rejected);
+        printf(
+            "  merged vs one render of %d spp: %d block tests, min p %.3g, %zu rejected\n",
+            SPP,
+            3 * s.n_blocks,
+            min_p,
+            rejected);
         CHECK(rejected == 0);
         double mean_m[3], mean_s[3];
         metrics_mean(&merged, NULL, mean_m);
@@ -320,7 +386,8 @@ TEST(merged_renders_equal_one_long_render_and_pass_the_block_tests)
         const char *variance = case_path(c, "merged_variance", "pfm");
         const char *stats = case_path(c, "merged_stats", "json");
         const char *single = case_path(c, "single", "pfm");
-        if (!prepare(c, &in) || !merge_renders(c, merged, variance, stats) || !render_to(c, SPP, 301, single)) {
+        if (!prepare(c, &in) || !merge_renders(c, merged, variance, stats)
+            || !render_to(c, SPP, 301, single)) {
             CHECK(false);
             continue;
         }
@@ -329,8 +396,18 @@ TEST(merged_renders_equal_one_long_render_and_pass_the_block_tests)
         check_equal_within_noise(merged, variance, single);
         char output[OUTPUT_CAP], dof[16];
         snprintf(dof, sizeof dof, "%d", MERGE_K - 1);
-        const char *const args[] = {merged, "--variance", variance, "--variance-dof", dof, in.ref,
-                                    "--ref-rel-se", in.rel_se, "--ref-dof", in.dof, NULL};
+        const char *const args[] = {
+            merged,
+            "--variance",
+            variance,
+            "--variance-dof",
+            dof,
+            in.ref,
+            "--ref-rel-se",
+            in.rel_se,
+            "--ref-dof",
+            in.dof,
+            NULL};
         int status = run_compare(args, output, sizeof output);
         const char *verdict = strstr(output, "verdict");
         printf("%s merged: exit %d: %s", c->name, status, verdict ? verdict : output);

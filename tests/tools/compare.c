@@ -93,7 +93,13 @@ parse_number(const char *name, const char *value, double lo, double hi, double *
     errno = 0;
     double v = strtod(value, &end);
     if (end == value || *end != '\0' || errno == ERANGE || !(v >= lo && v <= hi)) {
-        fprintf(stderr, "compare: error: %s expects a number in [%g, %g], got '%s'\n", name, lo, hi, value);
+        fprintf(
+            stderr,
+            "compare: error: %s expects a number in [%g, %g], got '%s'\n",
+            name,
+            lo,
+            hi,
+            value);
         return false;
     }
     *out = v;
@@ -144,9 +150,18 @@ parse_valued(struct args *a, const char *name, const char *value)
 static bool
 takes_value(const char *s)
 {
-    static const char *const valued[] = {"--variance", "--variance-dof", "--block", "--alpha",
-                                         "--ref-rel-se", "--ref-dof", "--map", "--range",
-                                         "--html", "--title", "--max-relmse"};
+    static const char *const valued[] = {
+        "--variance",
+        "--variance-dof",
+        "--block",
+        "--alpha",
+        "--ref-rel-se",
+        "--ref-dof",
+        "--map",
+        "--range",
+        "--html",
+        "--title",
+        "--max-relmse"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++) {
         if (strcmp(s, valued[i]) == 0) {
             return true;
@@ -234,14 +249,31 @@ load_inputs(struct comparison *c, struct diag *err)
     for (int j = 0; ok && j < c->k; j++) {
         weights[j] = 1;
         ok = imgread(c->render_paths[j], &renders[j], err);
-        if (ok && (renders[j].width != c->reference.width || renders[j].height != c->reference.height)) {
-            diag_set(err, c->render_paths[j], 0, 0, "the render is %dx%d but the reference %s is %dx%d",
-                     renders[j].width, renders[j].height, c->reference_path, c->reference.width,
-                     c->reference.height);
+        if (ok
+            && (renders[j].width != c->reference.width
+                || renders[j].height != c->reference.height)) {
+            diag_set(
+                err,
+                c->render_paths[j],
+                0,
+                0,
+                "the render is %dx%d but the reference %s is %dx%d",
+                renders[j].width,
+                renders[j].height,
+                c->reference_path,
+                c->reference.width,
+                c->reference.height);
             ok = false;
         }
     }
-    ok = ok && estimate_combine(renders, weights, c->k, &c->render, c->k >= 2 ? &c->variance : NULL, err);
+    ok = ok
+         && estimate_combine(
+             renders,
+             weights,
+             c->k,
+             &c->render,
+             c->k >= 2 ? &c->variance : NULL,
+             err);
     c->noise = c->k >= 2 ? NOISE_RENDERS : NOISE_NONE;
     c->pixel_dof = c->k >= 2 ? c->k - 1 : c->pixel_dof;
     c->renders_identical = ok && c->k >= 2;
@@ -254,9 +286,18 @@ load_inputs(struct comparison *c, struct diag *err)
     }
     if (ok && c->variance_path) {
         ok = imgread(c->variance_path, &c->variance, err);
-        if (ok && (c->variance.width != c->render.width || c->variance.height != c->render.height)) {
-            diag_set(err, c->variance_path, 0, 0, "the variance image is %dx%d but the render is %dx%d",
-                     c->variance.width, c->variance.height, c->render.width, c->render.height);
+        if (ok
+            && (c->variance.width != c->render.width || c->variance.height != c->render.height)) {
+            diag_set(
+                err,
+                c->variance_path,
+                0,
+                0,
+                "the variance image is %dx%d but the render is %dx%d",
+                c->variance.width,
+                c->variance.height,
+                c->render.width,
+                c->render.height);
             ok = false;
         }
         c->noise = NOISE_VARIANCE;
@@ -282,18 +323,37 @@ compare_describe_block(char *buf, size_t cap, const struct metrics_block *b)
     static const char *const names[3] = {"red", "green", "blue"};
     int ch = compare_block_channel(b);
     double diff = b->mean[ch] - b->ref_mean[ch];
-    int n = snprintf(buf, cap, "the block at x %d-%d, y %d-%d ", b->x0, b->x0 + b->w - 1, b->y0, b->y0 + b->h - 1);
+    int n = snprintf(
+        buf,
+        cap,
+        "the block at x %d-%d, y %d-%d ",
+        b->x0,
+        b->x0 + b->w - 1,
+        b->y0,
+        b->y0 + b->h - 1);
     if (n < 0 || (size_t)n >= cap) {
         return;
     }
     if (!isfinite(b->mean[ch])) {
         snprintf(buf + n, cap - (size_t)n, "holds NaN or infinite pixels");
     } else if (b->ref_mean[ch] != 0) {
-        snprintf(buf + n, cap - (size_t)n, "is %.2g%% %s than the reference (%s), %.2g standard errors",
-                 fabs(100 * diff / b->ref_mean[ch]), diff < 0 ? "darker" : "brighter", names[ch], fabs(b->t[ch]));
+        snprintf(
+            buf + n,
+            cap - (size_t)n,
+            "is %.2g%% %s than the reference (%s), %.2g standard errors",
+            fabs(100 * diff / b->ref_mean[ch]),
+            diff < 0 ? "darker" : "brighter",
+            names[ch],
+            fabs(b->t[ch]));
     } else {
-        snprintf(buf + n, cap - (size_t)n, "is %.3g %s than the reference's 0 (%s), %.2g standard errors",
-                 fabs(diff), diff < 0 ? "darker" : "brighter", names[ch], fabs(b->t[ch]));
+        snprintf(
+            buf + n,
+            cap - (size_t)n,
+            "is %.3g %s than the reference's 0 (%s), %.2g standard errors",
+            fabs(diff),
+            diff < 0 ? "darker" : "brighter",
+            names[ch],
+            fabs(b->t[ch]));
     }
 }
 
@@ -325,8 +385,14 @@ test_blocks(struct comparison *c, struct diag *err)
         .ref_rel_se = c->ref_rel_se / c->block_size,
         .ref_dof = c->ref_dof,
     };
-    if (!metrics_block_stats_variance(&c->render, &c->variance, c->pixel_dof, &c->reference, &params,
-                                      &c->blocks, err)) {
+    if (!metrics_block_stats_variance(
+            &c->render,
+            &c->variance,
+            c->pixel_dof,
+            &c->reference,
+            &params,
+            &c->blocks,
+            err)) {
         return false;
     }
     c->level = stattest_sidak(c->alpha, 3.0 * c->blocks.n_blocks);
@@ -384,24 +450,40 @@ decide(struct comparison *c)
         bool over = c->max_relmse > 0 && !(m->relmse <= c->max_relmse);
         c->status = nonfinite || over ? COMPARE_BIASED : COMPARE_AGREE;
         if (nonfinite) {
-            snprintf(c->verdict, sizeof c->verdict, "wrong: %zu pixels are NaN or infinite", m->n_nonfinite);
+            snprintf(
+                c->verdict,
+                sizeof c->verdict,
+                "wrong: %zu pixels are NaN or infinite",
+                m->n_nonfinite);
         } else if (over) {
-            snprintf(c->verdict, sizeof c->verdict, "too far: relMSE %.3g is above the limit %.3g", m->relmse,
-                     c->max_relmse);
+            snprintf(
+                c->verdict,
+                sizeof c->verdict,
+                "too far: relMSE %.3g is above the limit %.3g",
+                m->relmse,
+                c->max_relmse);
         } else {
-            snprintf(c->verdict, sizeof c->verdict,
-                     "not tested for bias: give a second render with another --seed, or --variance");
+            snprintf(
+                c->verdict,
+                sizeof c->verdict,
+                "not tested for bias: give a second render with another --seed, or --variance");
         }
         return;
     }
     c->status = c->n_failing ? COMPARE_BIASED : COMPARE_AGREE;
     if (c->n_failing) {
-        snprintf(c->verdict, sizeof c->verdict,
-                 "biased: %d of %d blocks differ from the reference by more than noise", c->n_failing,
-                 c->blocks.n_blocks);
+        snprintf(
+            c->verdict,
+            sizeof c->verdict,
+            "biased: %d of %d blocks differ from the reference by more than noise",
+            c->n_failing,
+            c->blocks.n_blocks);
     } else {
-        snprintf(c->verdict, sizeof c->verdict, "consistent with the reference (noise only): none of %d blocks differs by more than noise",
-                 c->blocks.n_blocks);
+        snprintf(
+            c->verdict,
+            sizeof c->verdict,
+            "consistent with the reference (noise only): none of %d blocks differs by more than noise",
+            c->blocks.n_blocks);
     }
 }
 
@@ -415,36 +497,61 @@ print_text(const struct comparison *c)
     }
     printf("\nreference  %s", c->reference_path);
     if (c->ref_rel_se > 0) {
-        printf(" (relative SE %.2g per pixel, %g dof%s)", c->ref_rel_se, c->ref_dof,
-               c->ref_se_from_meta ? ", from its META.json" : "");
+        printf(
+            " (relative SE %.2g per pixel, %g dof%s)",
+            c->ref_rel_se,
+            c->ref_dof,
+            c->ref_se_from_meta ? ", from its META.json" : "");
     }
     printf("\nsize       %dx%d\n", c->render.width, c->render.height);
     printf("relMSE     %.4g\n", m->relmse);
     printf("RMSE       %.4g\n", m->rmse);
-    printf("mean R G B render %.5g %.5g %.5g, reference %.5g %.5g %.5g\n", m->mean[0], m->mean[1], m->mean[2],
-           m->ref_mean[0], m->ref_mean[1], m->ref_mean[2]);
+    printf(
+        "mean R G B render %.5g %.5g %.5g, reference %.5g %.5g %.5g\n",
+        m->mean[0],
+        m->mean[1],
+        m->mean[2],
+        m->ref_mean[0],
+        m->ref_mean[1],
+        m->ref_mean[2]);
     if (m->n_nonfinite) {
         printf("NaN/Inf    %zu pixels (left out of the numbers above)\n", m->n_nonfinite);
     }
     if (c->worst >= 0) {
         int bs = c->block_size, bx = (c->render.width + bs - 1) / bs;
         int x0 = (c->worst % bx) * bs, y0 = (c->worst / bx) * bs;
-        printf("worst      the block at x %d-%d, y %d-%d: ", x0, (x0 + bs < c->render.width ? x0 + bs : c->render.width) - 1,
-               y0, (y0 + bs < c->render.height ? y0 + bs : c->render.height) - 1);
+        printf(
+            "worst      the block at x %d-%d, y %d-%d: ",
+            x0,
+            (x0 + bs < c->render.width ? x0 + bs : c->render.width) - 1,
+            y0,
+            (y0 + bs < c->render.height ? y0 + bs : c->render.height) - 1);
         if (isfinite(c->worst_error)) {
-            printf("luminance %.2g%% %s\n", fabs(100 * c->worst_error), c->worst_error < 0 ? "darker" : "brighter");
+            printf(
+                "luminance %.2g%% %s\n",
+                fabs(100 * c->worst_error),
+                c->worst_error < 0 ? "darker" : "brighter");
         } else {
             printf("NaN or infinite pixels\n");
         }
     }
     if (c->noise != NOISE_NONE) {
-        printf("noise      %s\n", c->noise == NOISE_RENDERS ? "from the spread of the renders" : "from the variance image");
+        printf(
+            "noise      %s\n",
+            c->noise == NOISE_RENDERS ? "from the spread of the renders"
+                                      : "from the variance image");
         if (c->renders_identical) {
-            printf("note       the renders are identical (a deterministic stage, or one seed twice):\n"
-                   "           no noise, so any difference beyond the reference's own noise counts\n");
+            printf(
+                "note       the renders are identical (a deterministic stage, or one seed twice):\n"
+                "           no noise, so any difference beyond the reference's own noise counts\n");
         }
-        printf("tests      %d blocks of %dx%d x 3 channels, each at %.2g (alpha %g, Sidak-corrected)\n",
-               c->blocks.n_blocks, c->block_size, c->block_size, c->level, c->alpha);
+        printf(
+            "tests      %d blocks of %dx%d x 3 channels, each at %.2g (alpha %g, Sidak-corrected)\n",
+            c->blocks.n_blocks,
+            c->block_size,
+            c->block_size,
+            c->level,
+            c->alpha);
     }
     printf("verdict    %s\n", c->verdict);
     for (int i = 0; i < c->n_failing && i < MAX_LISTED; i++) {

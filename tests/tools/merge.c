@@ -157,8 +157,14 @@ read_input_stats(struct input *in, struct diag *err)
         return true;
     }
     if (!in->stats[0] || !test_json_number(in->stats, "spp", &in->spp) || !(in->spp >= 1)) {
-        diag_set(err, in->path, 0, 0, "no spp: give --spp N before it, or keep its stats file (%.*s.json)", stem,
-                 in->path);
+        diag_set(
+            err,
+            in->path,
+            0,
+            0,
+            "no spp: give --spp N before it, or keep its stats file (%.*s.json)",
+            stem,
+            in->path);
         return false;
     }
     return true;
@@ -170,7 +176,12 @@ check_inputs(struct args *a, struct diag *err)
     for (int i = 0; i < a->n; i++) {
         struct input *in = &a->inputs[i];
         if (!linear_format(in->path)) {
-            diag_set(err, in->path, 0, 0, "merge reads .pfm or .exr (a PNG is clamped and quantised)");
+            diag_set(
+                err,
+                in->path,
+                0,
+                0,
+                "merge reads .pfm or .exr (a PNG is clamped and quantised)");
             return false;
         }
         if (!read_input_stats(in, err)) {
@@ -178,8 +189,14 @@ check_inputs(struct args *a, struct diag *err)
         }
         for (int j = 0; j < i; j++) {
             if (in->seed >= 0 && in->seed == a->inputs[j].seed) {
-                diag_set(err, in->path, 0, 0, "rendered with the same seed (%.0f) as %s: the same samples twice",
-                         in->seed, a->inputs[j].path);
+                diag_set(
+                    err,
+                    in->path,
+                    0,
+                    0,
+                    "rendered with the same seed (%.0f) as %s: the same samples twice",
+                    in->seed,
+                    a->inputs[j].path);
                 return false;
             }
         }
@@ -194,8 +211,12 @@ write_stats(const struct args *a, double spp, int width, int height, struct diag
     if (!atomic_file_open(&af, a->stats, err)) {
         return false;
     }
-    fprintf(af.f, "{\n  \"tool\": \"merge\",\n  \"width\": %d,\n  \"height\": %d,\n  \"spp\": %.17g,\n", width,
-            height, spp);
+    fprintf(
+        af.f,
+        "{\n  \"tool\": \"merge\",\n  \"width\": %d,\n  \"height\": %d,\n  \"spp\": %.17g,\n",
+        width,
+        height,
+        spp);
     fprintf(af.f, "  \"inputs\": %d,\n  \"variance_dof\": %d\n}\n", a->n, a->n - 1);
     return atomic_file_commit(&af, err);
 }
@@ -204,8 +225,12 @@ static bool
 merge(struct args *a, struct diag *err)
 {
     if (!linear_format(a->output) || (a->variance && !linear_format(a->variance))) {
-        diag_set(err, a->variance && !linear_format(a->variance) ? a->variance : a->output, 0, 0,
-                 "merge writes .pfm or .exr (linear radiance)");
+        diag_set(
+            err,
+            a->variance && !linear_format(a->variance) ? a->variance : a->output,
+            0,
+            0,
+            "merge writes .pfm or .exr (linear radiance)");
         return false;
     }
     if (!check_inputs(a, err)) {
@@ -224,8 +249,17 @@ merge(struct args *a, struct diag *err)
         total += weights[i];
         ok = imgread(a->inputs[i].path, &images[i], err);
         if (ok && (images[i].width != images[0].width || images[i].height != images[0].height)) {
-            diag_set(err, a->inputs[i].path, 0, 0, "the image is %dx%d but %s is %dx%d", images[i].width,
-                     images[i].height, a->inputs[0].path, images[0].width, images[0].height);
+            diag_set(
+                err,
+                a->inputs[i].path,
+                0,
+                0,
+                "the image is %dx%d but %s is %dx%d",
+                images[i].width,
+                images[i].height,
+                a->inputs[0].path,
+                images[0].width,
+                images[0].height);
             ok = false;
         }
     }
