@@ -112,14 +112,7 @@ write_set(uint64_t sa, uint64_t sb, int bx, int by, double scale)
 static int
 compare(const char *const *args, char *out)
 {
-    const char *argv[40];
-    int n = 0;
-    argv[n++] = test_tool_binary("compare");
-    for (int i = 0; args[i] && n < 39; i++) {
-        argv[n++] = args[i];
-    }
-    argv[n] = NULL;
-    return test_run(argv, out, CAP);
+    return test_run_tool("compare", args, out, CAP);
 }
 
 #define TMP(name) test_tmp_path(name)

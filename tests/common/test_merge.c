@@ -40,14 +40,7 @@ write_stats(const char *name, int spp, int seed)
 static int
 merge(const char *const *args, char *out)
 {
-    const char *argv[32];
-    int n = 0;
-    argv[n++] = test_tool_binary("merge");
-    for (int i = 0; args[i] && n < 31; i++) {
-        argv[n++] = args[i];
-    }
-    argv[n] = NULL;
-    return test_run(argv, out, CAP);
+    return test_run_tool("merge", args, out, CAP);
 }
 
 /* Every sample of the image at path is `v` plus its index (within tol). */

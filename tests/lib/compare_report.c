@@ -143,6 +143,22 @@ put_image(
     fputs(id ? "\">" : "\">", f);
 }
 
+void
+compare_format_means(char *buf, size_t cap, const struct metrics *m, const char *separator)
+{
+    snprintf(
+        buf,
+        cap,
+        "render %.5g %.5g %.5g%sreference %.5g %.5g %.5g",
+        m->mean[0],
+        m->mean[1],
+        m->mean[2],
+        separator,
+        m->ref_mean[0],
+        m->ref_mean[1],
+        m->ref_mean[2]);
+}
+
 static void
 put_numbers(FILE *f, const struct comparison *c)
 {
@@ -153,15 +169,9 @@ put_numbers(FILE *f, const struct comparison *c)
         "<tr><th>relMSE</th><td>%.4g</td></tr>\n<tr><th>RMSE</th><td>%.4g</td></tr>\n",
         m->relmse,
         m->rmse);
-    fprintf(
-        f,
-        "<tr><th>mean R, G, B</th><td>render %.5g, %.5g, %.5g<br>reference %.5g, %.5g, %.5g</td></tr>\n",
-        m->mean[0],
-        m->mean[1],
-        m->mean[2],
-        m->ref_mean[0],
-        m->ref_mean[1],
-        m->ref_mean[2]);
+    char means[160];
+    compare_format_means(means, sizeof means, m, "<br>");
+    fprintf(f, "<tr><th>mean R G B</th><td>%s</td></tr>\n", means);
     if (m->n_nonfinite) {
         fprintf(f, "<tr><th>NaN or Inf</th><td>%zu pixels</td></tr>\n", m->n_nonfinite);
     }

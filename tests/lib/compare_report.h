@@ -67,6 +67,9 @@ int compare_block_channel(const struct metrics_block *b);
  * darker than the reference (green), 6.1 standard errors". */
 void compare_describe_block(char *buf, size_t cap, const struct metrics_block *b);
 
+/* "render R G B, reference R G B": the means of both images, per channel. */
+void compare_format_means(char *buf, size_t cap, const struct metrics *m, const char *separator);
+
 /* Write the report page of c with the error map (already drawn) to path,
  * through a temporary file renamed into place. */
 bool compare_write_html(

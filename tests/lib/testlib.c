@@ -225,6 +225,19 @@ test_tool_binary(const char *name)
     return test_root_path(relative);
 }
 
+int
+test_run_tool(const char *name, const char *const args[], char *output, size_t cap)
+{
+    const char *argv[64];
+    int n = 0;
+    argv[n++] = test_tool_binary(name);
+    for (int i = 0; args[i] && n < 63; i++) {
+        argv[n++] = args[i];
+    }
+    argv[n] = NULL;
+    return test_run(argv, output, cap);
+}
+
 const char *
 test_render_binary(void)
 {

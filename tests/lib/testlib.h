@@ -45,6 +45,10 @@ int test_run(const char *const argv[], char *output, size_t cap);
  * root/build/tools/NAME.  The string stays valid until the program ends. */
 const char *test_tool_binary(const char *name);
 
+/* Run the tool `name` (test_tool_binary) with args (NULL-terminated, the
+ * program left out), as test_run does. */
+int test_run_tool(const char *name, const char *const args[], char *output, size_t cap);
+
 /* Path of the stage's render binary (environment RENDER); NULL if unset. */
 const char *test_render_binary(void);
 

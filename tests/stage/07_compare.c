@@ -120,18 +120,11 @@ reference_to(const struct case_ *c, const char *path, char *rel_se, char *dof, s
     return ok;
 }
 
-/* Run compare with argv (NULL-terminated, without the program). */
+/* Run compare with args (NULL-terminated, without the program). */
 static int
 run_compare(const char *const *args, char *output, size_t cap)
 {
-    const char *argv[32];
-    int n = 0;
-    argv[n++] = test_tool_binary("compare");
-    for (int i = 0; args[i] && n < 31; i++) {
-        argv[n++] = args[i];
-    }
-    argv[n] = NULL;
-    return test_run(argv, output, cap);
+    return test_run_tool("compare", args, output, cap);
 }
 
 /* The two renders and the reference of case c. */

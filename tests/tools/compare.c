@@ -506,14 +506,9 @@ print_text(const struct comparison *c)
     printf("\nsize       %dx%d\n", c->render.width, c->render.height);
     printf("relMSE     %.4g\n", m->relmse);
     printf("RMSE       %.4g\n", m->rmse);
-    printf(
-        "mean R G B render %.5g %.5g %.5g, reference %.5g %.5g %.5g\n",
-        m->mean[0],
-        m->mean[1],
-        m->mean[2],
-        m->ref_mean[0],
-        m->ref_mean[1],
-        m->ref_mean[2]);
+    char means[160];
+    compare_format_means(means, sizeof means, m, ", ");
+    printf("mean R G B %s\n", means);
     if (m->n_nonfinite) {
         printf("NaN/Inf    %zu pixels (left out of the numbers above)\n", m->n_nonfinite);
     }
