@@ -1,9 +1,10 @@
 /*
  * gltf.h - triangle meshes from glTF 2.0 files (.gltf or .glb).
  *
- * The only C++ in the project lives behind this C API: gltf_shim.cc wraps
- * tinygltf (Debian's libtinygltf-dev) when the build finds it, and
- * gltf_stub.c, compiled otherwise, returns a clear error instead.
+ * The only C++ in the project lives behind this C API: gltf_shim.cc (and the
+ * gltf_*.cc files it lists) wraps tinygltf (Debian's libtinygltf-dev) when
+ * the build finds it, and gltf_stub.c, compiled otherwise, returns a clear
+ * error instead.
  *
  * gltf_load flattens every TRIANGLES primitive of the default scene (or of
  * scene 0 when none is marked default) into one world-space triangle list:

@@ -1,0 +1,116 @@
+/*
+ * gltf_shim.h - what the glTF loader's C++ files share (gltf_shim.cc lists
+ * them); internal to common/, whose API for meshes is gltf.h.
+ *
+ * A load goes parse_model -> check_required_extensions -> collect_jobs ->
+ * plan_parts -> copy_parts; each returns false with *why set on failure.
+ */
+#ifndef GLTF_SHIM_H
+#define GLTF_SHIM_H
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <tiny_gltf.h>
+
+extern "C" {
+#include "gltf.h"
+}
+
+// The model's directory as tinygltf joins it to a URI, the bytes external
+// files may still take, and why the last one was refused (tinygltf only
+// says "File not found").
+struct fs_guard {
+    std::string prefix;
+    size_t budget;
+    std::string refused_uri;
+    std::string refusal;
+};
+
+// A 4x4 matrix, column-major as glTF stores it: m[column * 4 + row].
+struct mat4 {
+    double m[16];
+};
+
+// An accessor whose bytes have been checked: count elements, stride apart.
+struct view {
+    const unsigned char *data;
+    size_t count;
+    size_t stride;
+    int component_type;
+};
+
+// One primitive of one node, checked and ready to copy.
+struct part {
+    int mesh, primitive;
+    size_t job;
+    view positions, normals, indices;
+    bool has_normals, has_indices;
+    size_t n_triangles;
+};
+
+// A node that draws a mesh, with its world transform.
+struct job {
+    int mesh;
+    mat4 world;
+};
+
+// printf into a std::string (messages are short: cut at 511 bytes).
+std::string format(const char *fmt, ...) DIAG_PRINTF(1, 2);
+
+static inline uint32_t
+read_u32le(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+/* --- gltf_files.cc: reading files, and tinygltf's filesystem callbacks ---- */
+
+// At most limit bytes of path into *out.
+bool
+read_file(const std::string &path, size_t limit, std::vector<unsigned char> *out, std::string *why);
+// tinygltf::FsCallbacks; user is the fs_guard.
+bool guarded_file_exists(const std::string &path, void *user);
+std::string unexpanded_path(const std::string &path, void *);
+bool guarded_read_file(
+    std::vector<unsigned char> *out,
+    std::string *err,
+    const std::string &path,
+    void *user);
+bool
+refuse_write(std::string *err, const std::string &, const std::vector<unsigned char> &, void *);
+// tinygltf's image loader: images are never decoded.
+bool skip_image(
+    tinygltf::Image *,
+    const int,
+    std::string *,
+    std::string *,
+    int,
+    int,
+    const unsigned char *,
+    int,
+    void *);
+
+/* --- the steps of a load -------------------------------------------------- */
+
+// gltf_parse.cc
+bool parse_model(const char *path, tinygltf::Model *model, fs_guard *guard, std::string *why);
+bool check_required_extensions(const tinygltf::Model &model, std::string *why);
+// gltf_nodes.cc
+bool collect_jobs(const tinygltf::Model &model, std::vector<job> *jobs, std::string *why);
+// gltf_accessors.cc
+bool plan_parts(
+    const tinygltf::Model &model,
+    const std::vector<job> &jobs,
+    std::vector<part> *parts,
+    std::string *why);
+// gltf_copy.cc
+bool copy_parts(
+    const std::vector<job> &jobs,
+    const std::vector<part> &parts,
+    struct gltf_mesh *out,
+    std::string *why);
+
+#endif /* GLTF_SHIM_H */
