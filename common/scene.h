@@ -76,12 +76,18 @@ struct point_light {
     vec3 intensity; /* W/sr per channel */
 };
 
-/* A one-sided rectangle emitting radiance L from the side its normal
- * normalize(cross(edge1, edge2)) points to.  As a surface it is black on
- * both sides and blocks light like any other surface. */
+/* A surface emitting radiance L from the side its normal
+ * normalize(cross(edge1, edge2)) points to (from both sides when
+ * two_sided): the parallelogram corner + s*edge1 + t*edge2 for s, t in
+ * [0, 1] (an `area_light` statement), or, when triangle is set, the triangle
+ * with corners corner, corner + edge1, corner + edge2 (s + t <= 1: a
+ * triangle of an emissive glTF mesh).  As a surface it is black on both
+ * sides and blocks light like any other surface. */
 struct area_light {
     vec3 corner, edge1, edge2;
     vec3 radiance;
+    bool triangle;
+    bool two_sided;
     struct src_loc loc;
 };
 
@@ -149,6 +155,14 @@ bool scene_load_string(
 /* Free everything; accepts a zero-initialised or half-built scene. */
 void scene_free(struct scene *s);
 
+/* The radiance an area light sends towards a ray that hit its front
+ * (front_face: the side its normal points to) or its back. */
+static inline vec3
+area_light_emitted(const struct area_light *light, bool front_face)
+{
+    return front_face || light->two_sided ? light->radiance : vec3_splat(0);
+}
+
 /* The geometric normal of an area light (unit, the emitting side). */
 static inline vec3
 area_light_normal(const struct area_light *light)
@@ -156,17 +170,31 @@ area_light_normal(const struct area_light *light)
     return vec3_normalize(vec3_cross(light->edge1, light->edge2));
 }
 
+/* |cross(edge1, edge2)| is the parallelogram's area, twice the triangle's. */
 static inline real
 area_light_area(const struct area_light *light)
 {
-    return vec3_length(vec3_cross(light->edge1, light->edge2));
+    real parallelogram = vec3_length(vec3_cross(light->edge1, light->edge2));
+    return light->triangle ? parallelogram / 2 : parallelogram;
 }
 
+/* The centroid: corner + (edge1 + edge2) / 2 for a parallelogram, / 3 for
+ * a triangle. */
 static inline vec3
 area_light_center(const struct area_light *light)
 {
-    vec3 half = vec3_scale(vec3_add(light->edge1, light->edge2), (real)0.5);
-    return vec3_add(light->corner, half);
+    real f = light->triangle ? (real)1 / 3 : (real)0.5;
+    return vec3_add(light->corner, vec3_scale(vec3_add(light->edge1, light->edge2), f));
+}
+
+/* The cosine of the angle between the light's normal n and the unit
+ * direction d in which it sends light; negative values (the back) count
+ * as |cos| for a two-sided light. */
+static inline real
+area_light_cos(const struct area_light *light, vec3 n, vec3 d)
+{
+    real c = vec3_dot(n, d);
+    return light->two_sided ? fabs(c) : c;
 }
 
 #endif /* SCENE_H */

@@ -30,7 +30,7 @@ area_light_intensity(const struct area_light *light, vec3 p)
     vec3 center = area_light_center(light);
     vec3 to_p = vec3_sub(p, center);
     real dist = vec3_length(to_p);
-    real cos_light = dist > 0 ? vec3_dot(area_light_normal(light), to_p) / dist : 0;
+    real cos_light = dist > 0 ? area_light_cos(light, area_light_normal(light), to_p) / dist : 0;
     if (!(cos_light > 0)) {
         return vec3_splat(0);
     }

@@ -166,11 +166,21 @@ intersect_triangle(vec3 p0, vec3 p1, vec3 p2, ray r, real t_max, real *t, real *
     return *u >= 0 && *v >= 0 && *u + *v <= 1 && *t > 0 && *t < t_max && spans_plane(e1, e2);
 }
 
-/* An area light's rectangle, as a quad. */
+/* An area light's parallelogram, as a quad. */
 static struct quad
 light_quad(const struct area_light *light)
 {
     return (struct quad){light->corner, light->edge1, light->edge2, -1};
+}
+
+/* An area light: its parallelogram, or for a triangle light the half of it
+ * where the edge fractions u + v <= 1 (then u, v are barycentric, and
+ * corner + u edge1 + v edge2 is the point either way). */
+static bool
+intersect_light(const struct area_light *light, ray r, real t_max, real *t, real *u, real *v)
+{
+    struct quad q = light_quad(light);
+    return intersect_quad(&q, r, t_max, t, u, v) && (!light->triangle || *u + *v <= 1);
 }
 
 bool
@@ -186,8 +196,7 @@ intersect_prim(const struct scene *s, int prim, ray r, real t_max, struct hit *o
     } else if (prim < s->n_spheres + s->n_quads) {
         found = intersect_quad(&s->quads[prim - s->n_spheres], r, t_max, &t, &u, &v);
     } else if (prim >= n_shapes) {
-        struct quad q = light_quad(&s->area_lights[prim - n_shapes]);
-        found = intersect_quad(&q, r, t_max, &t, &u, &v);
+        found = intersect_light(&s->area_lights[prim - n_shapes], r, t_max, &t, &u, &v);
     } else {
         const struct triangle *tri = &s->triangles[prim - s->n_spheres - s->n_quads];
         vec3 p0 = s->positions[tri->v[0]];

@@ -119,14 +119,18 @@ light_sample_irradiance(
     struct stats *st,
     bool *blocked)
 {
-    /* cross(edge1, edge2) is the light's unit normal times its area A, so
-     * one product gives cos(theta') A, with no square root per sample. */
+    /* cross(edge1, edge2) is the light's unit normal times its area A
+     * (twice A for a triangle), so one product gives cos(theta') A, with
+     * no square root per sample. */
     vec3 normal_area = vec3_cross(light->edge1, light->edge2);
+    if (light->triangle) {
+        normal_area = vec3_scale(normal_area, (real)0.5);
+    }
     vec3 to_light = vec3_sub(y, h->p);
     real dist2 = vec3_length2(to_light);
     real dist = sqrt(dist2);
     real cos_surface = vec3_dot(h->n, to_light) / dist;
-    real cos_light_area = -vec3_dot(normal_area, to_light) / dist;
+    real cos_light_area = area_light_cos(light, normal_area, vec3_neg(to_light)) / dist;
     *blocked = false;
     if (!(cos_surface > 0 && cos_light_area > 0)) {
         return vec3_splat(0);
@@ -135,6 +139,19 @@ light_sample_irradiance(
     *blocked = through.x < 1 || through.y < 1 || through.z < 1;
     vec3 l = vec3_scale(light->radiance, cos_surface * cos_light_area / dist2);
     return vec3_mul(through, l);
+}
+
+/* For a triangle light, the half of the unit square beyond the diagonal
+ * u + v = 1 folded onto the triangle's half (u, v -> 1 - u, 1 - v, a map
+ * that keeps area): a uniform (u, v) gives a uniform point of the triangle,
+ * and a set of cells covering the square covers the triangle evenly. */
+static void
+fold_into_triangle(const struct area_light *light, real *u, real *v)
+{
+    if (light->triangle && *u + *v > 1) {
+        *u = 1 - *u;
+        *v = 1 - *v;
+    }
 }
 
 /* The sum of n samples of the light's irradiance, one in each cell of a
@@ -157,6 +174,7 @@ sum_light_samples(
     for (int i = 0; i < n; i++) {
         real u = ((real)(i % k) + rng_uniform(rng)) / (real)k;
         real v = ((real)(i / k) + rng_uniform(rng)) / (real)m;
+        fold_into_triangle(light, &u, &v);
         bool blocked;
         vec3 y = sample_area_light(light, u, v);
         sum = vec3_add(sum, light_sample_irradiance(w, h, light, y, st, &blocked));
@@ -193,11 +211,13 @@ clip_above(const vec3 *in, int n_in, vec3 p, vec3 n, vec3 *out)
  * theta_i the angle the edge (v_i, v_i+1) subtends and g_i the unit normal
  * of the plane through the point and that edge (Lambert, 1760; Arvo,
  * "Applications of Irradiance Tensors", 1995).  The part of the light below
- * the surface's horizon is clipped away first. */
+ * the surface's horizon is clipped away first.  The absolute value makes it
+ * hold on either side of the polygon, as a two-sided light needs. */
 static vec3
 unoccluded_irradiance(const struct hit *h, const struct area_light *light)
 {
-    if (vec3_dot(area_light_normal(light), vec3_sub(h->p, light->corner)) <= 0) {
+    real side = vec3_dot(area_light_normal(light), vec3_sub(h->p, light->corner));
+    if (!light->two_sided && side <= 0) {
         return vec3_splat(0); /* behind the one-sided light */
     }
     vec3 corners[4] = {
@@ -205,8 +225,13 @@ unoccluded_irradiance(const struct hit *h, const struct area_light *light)
         vec3_add(light->corner, light->edge1),
         vec3_add(vec3_add(light->corner, light->edge1), light->edge2),
         vec3_add(light->corner, light->edge2)};
+    int n_corners = 4;
+    if (light->triangle) {
+        corners[2] = corners[3];
+        n_corners = 3;
+    }
     vec3 poly[5];
-    int n = clip_above(corners, 4, h->p, h->n, poly);
+    int n = clip_above(corners, n_corners, h->p, h->n, poly);
     real sum = 0;
     for (int i = 0; i < n; i++) {
         vec3 a = vec3_sub(poly[i], h->p);

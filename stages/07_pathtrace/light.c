@@ -5,6 +5,8 @@
  */
 #include "light.h"
 
+#include <stdlib.h>
+
 vec3
 point_irradiance(const struct hit *h, vec3 from, vec3 intensity)
 {
@@ -95,14 +97,18 @@ light_sample_irradiance(
     struct stats *st,
     bool *blocked)
 {
-    /* cross(edge1, edge2) is the light's unit normal times its area A, so
-     * one product gives cos(theta') A, with no square root per sample. */
+    /* cross(edge1, edge2) is the light's unit normal times its area A
+     * (twice A for a triangle), so one product gives cos(theta') A, with
+     * no square root per sample. */
     vec3 normal_area = vec3_cross(light->edge1, light->edge2);
+    if (light->triangle) {
+        normal_area = vec3_scale(normal_area, (real)0.5);
+    }
     vec3 to_light = vec3_sub(y, h->p);
     real dist2 = vec3_length2(to_light);
     real dist = sqrt(dist2);
     real cos_surface = vec3_dot(h->n, to_light) / dist;
-    real cos_light_area = -vec3_dot(normal_area, to_light) / dist;
+    real cos_light_area = area_light_cos(light, normal_area, vec3_neg(to_light)) / dist;
     *blocked = false;
     if (!(cos_surface > 0 && cos_light_area > 0)) {
         return vec3_splat(0);
@@ -111,6 +117,19 @@ light_sample_irradiance(
     *blocked = through.x < 1 || through.y < 1 || through.z < 1;
     vec3 l = vec3_scale(light->radiance, cos_surface * cos_light_area / dist2);
     return vec3_mul(through, l);
+}
+
+/* For a triangle light, the half of the unit square beyond the diagonal
+ * u + v = 1 folded onto the triangle's half (u, v -> 1 - u, 1 - v, a map
+ * that keeps area): a uniform (u, v) gives a uniform point of the triangle,
+ * and a set of cells covering the square covers the triangle evenly. */
+static void
+fold_into_triangle(const struct area_light *light, real *u, real *v)
+{
+    if (light->triangle && *u + *v > 1) {
+        *u = 1 - *u;
+        *v = 1 - *v;
+    }
 }
 
 /* The sum of n samples of the light's irradiance, one in each cell of a
@@ -133,6 +152,7 @@ sum_light_samples(
     for (int i = 0; i < n; i++) {
         real u = ((real)(i % k) + rng_uniform(rng)) / (real)k;
         real v = ((real)(i / k) + rng_uniform(rng)) / (real)m;
+        fold_into_triangle(light, &u, &v);
         bool blocked;
         vec3 y = sample_area_light(light, u, v);
         sum = vec3_add(sum, light_sample_irradiance(w, h, light, y, st, &blocked));
@@ -169,11 +189,13 @@ clip_above(const vec3 *in, int n_in, vec3 p, vec3 n, vec3 *out)
  * theta_i the angle the edge (v_i, v_i+1) subtends and g_i the unit normal
  * of the plane through the point and that edge (Lambert, 1760; Arvo,
  * "Applications of Irradiance Tensors", 1995).  The part of the light below
- * the surface's horizon is clipped away first. */
+ * the surface's horizon is clipped away first.  The absolute value makes it
+ * hold on either side of the polygon, as a two-sided light needs. */
 static vec3
 unoccluded_irradiance(const struct hit *h, const struct area_light *light)
 {
-    if (vec3_dot(area_light_normal(light), vec3_sub(h->p, light->corner)) <= 0) {
+    real side = vec3_dot(area_light_normal(light), vec3_sub(h->p, light->corner));
+    if (!light->two_sided && side <= 0) {
         return vec3_splat(0); /* behind the one-sided light */
     }
     vec3 corners[4] = {
@@ -181,8 +203,13 @@ unoccluded_irradiance(const struct hit *h, const struct area_light *light)
         vec3_add(light->corner, light->edge1),
         vec3_add(vec3_add(light->corner, light->edge1), light->edge2),
         vec3_add(light->corner, light->edge2)};
+    int n_corners = 4;
+    if (light->triangle) {
+        corners[2] = corners[3];
+        n_corners = 3;
+    }
     vec3 poly[5];
-    int n = clip_above(corners, 4, h->p, h->n, poly);
+    int n = clip_above(corners, n_corners, h->p, h->n, poly);
     real sum = 0;
     for (int i = 0; i < n; i++) {
         vec3 a = vec3_sub(poly[i], h->p);
@@ -232,11 +259,146 @@ area_light_irradiance(
 
 /* END LAB */
 
+/* The light's power per unit of pi: A lum(L), doubled for a two-sided one. */
+static real
+light_power(const struct area_light *light)
+{
+    vec3 l = light->radiance;
+    real lum = (real)0.2126 * l.x + (real)0.7152 * l.y + (real)0.0722 * l.z;
+    return area_light_area(light) * lum * (light->two_sided ? 2 : 1);
+}
+
+bool
+light_picker_build(struct light_picker *lp, const struct scene *s, struct diag *err)
+{
+    *lp = (struct light_picker){0};
+    size_t n = (size_t)s->n_area_lights;
+    lp->light = malloc((n + 1) * sizeof *lp->light);
+    lp->cdf = malloc((n + 1) * sizeof *lp->cdf);
+    lp->prob = calloc(n + 1, sizeof *lp->prob);
+    if (!lp->light || !lp->cdf || !lp->prob) {
+        light_picker_free(lp);
+        diag_set(err, NULL, 0, 0, "out of memory for %zu lights", n);
+        return false;
+    }
+    real total = 0;
+    for (int i = 0; i < s->n_area_lights; i++) {
+        real power = light_power(&s->area_lights[i]);
+        if (s->area_lights[i].triangle && power > 0) {
+            total += power;
+            lp->light[lp->n] = i;
+            lp->cdf[lp->n++] = total;
+        }
+    }
+    for (int k = 0; k < lp->n; k++) {
+        lp->cdf[k] /= total;
+        lp->prob[lp->light[k]] = lp->cdf[k] - (k > 0 ? lp->cdf[k - 1] : 0);
+    }
+    if (lp->n > 0) {
+        /* The last bin ends at 1 exactly, so every u0 < 1 finds one; the
+         * probabilities stay the cdf's steps, which is what picking uses. */
+        lp->cdf[lp->n - 1] = 1;
+        int last = lp->light[lp->n - 1];
+        lp->prob[last] = 1 - (lp->n > 1 ? lp->cdf[lp->n - 2] : 0);
+    }
+    return true;
+}
+
+void
+light_picker_free(struct light_picker *lp)
+{
+    free(lp->light);
+    free(lp->cdf);
+    free(lp->prob);
+    *lp = (struct light_picker){0};
+}
+
+int
+light_picker_sample(
+    const struct light_picker *lp,
+    const struct scene *s,
+    real u0,
+    real u,
+    real v,
+    vec3 *y,
+    real *pdf_area)
+{
+    if (lp->n == 0) {
+        return -1;
+    }
+    /* The first bin whose upper end exceeds u0 (binary search). */
+    int lo = 0;
+    int hi = lp->n - 1;
+    while (lo < hi) {
+        int mid = lo + (hi - lo) / 2;
+        if (lp->cdf[mid] > u0) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    int i = lp->light[lo];
+    const struct area_light *light = &s->area_lights[i];
+    fold_into_triangle(light, &u, &v);
+    *y = sample_area_light(light, u, v);
+    *pdf_area = lp->prob[i] / area_light_area(light);
+    return i;
+}
+
+real
+light_picker_pdf_solid_angle(
+    const struct light_picker *lp,
+    const struct scene *s,
+    int i,
+    vec3 x,
+    vec3 y)
+{
+    const struct area_light *light = &s->area_lights[i];
+    vec3 d = vec3_sub(y, x);
+    real dist2 = vec3_length2(d);
+    real cos_light = fabs(vec3_dot(area_light_normal(light), d)) / sqrt(dist2);
+    if (!(cos_light > 0) || lp->prob[i] == 0) {
+        return 0;
+    }
+    return lp->prob[i] / area_light_area(light) * dist2 / cos_light;
+}
+
+/* Irradiance from the emitting triangles, sampled as one light (Shirley,
+ * Wang and Zimmerman, "Monte Carlo Techniques for Direct Lighting
+ * Calculations", 1996): each of n samples is a point y drawn by the picker
+ * with density p_i / A_i, and L cos(theta) cos(theta') / r^2 divided by that
+ * density, i.e. the rectangle's estimate L cos cos' A / r^2 divided by p_i. */
+static vec3
+triangle_lights_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct light_picker *picker,
+    int n,
+    struct rng *rng,
+    struct stats *st)
+{
+    vec3 sum = vec3_splat(0);
+    for (int k = 0; k < n; k++) {
+        real u0 = rng_uniform(rng);
+        real u = rng_uniform(rng);
+        real v = rng_uniform(rng);
+        vec3 y;
+        real pdf_area;
+        int i = light_picker_sample(picker, w->scene, u0, u, v, &y, &pdf_area);
+        const struct area_light *light = &w->scene->area_lights[i];
+        bool blocked;
+        vec3 e = light_sample_irradiance(w, h, light, y, st, &blocked);
+        sum = vec3_add(sum, vec3_scale(e, 1 / picker->prob[i]));
+    }
+    return vec3_scale(sum, 1 / (real)n);
+}
+
 vec3
 direct_irradiance(
     const struct world *w,
     const struct hit *h,
     const struct shadow_sampling *sampling,
+    const struct light_picker *picker,
     struct rng *rng,
     struct stats *st)
 {
@@ -250,9 +412,17 @@ direct_irradiance(
         }
     }
     /* samples = 0: area lights are left to the paths that hit them. */
-    for (int i = 0; i < s->n_area_lights && sampling->samples > 0; i++) {
+    if (sampling->samples == 0) {
+        return e;
+    }
+    for (int i = 0; i < s->n_area_lights; i++) {
         const struct area_light *light = &s->area_lights[i];
-        e = vec3_add(e, area_light_irradiance(w, h, light, sampling, rng, st));
+        if (!light->triangle) {
+            e = vec3_add(e, area_light_irradiance(w, h, light, sampling, rng, st));
+        }
+    }
+    if (picker->n > 0) {
+        e = vec3_add(e, triangle_lights_irradiance(w, h, picker, sampling->samples, rng, st));
     }
     return e;
 }

@@ -4,6 +4,7 @@
 #ifndef LIGHT_H
 #define LIGHT_H
 
+#include "diag.h"
 #include "geometry.h"
 #include "rng.h"
 #include "scene.h"
@@ -26,6 +27,52 @@ struct shadow_sampling {
 /* The extra statistics counter: shading points that took the penumbra path. */
 #define STAT_PENUMBRA 0
 
+/*
+ * Emitting triangles (the triangles of an emissive glTF mesh, thousands of
+ * tiny lights) are sampled as one light: a triangle picked with probability
+ * p_i proportional to its power Phi_i = pi A_i lum(L_i) (times 2 when it
+ * emits from both sides; lum: the luminance of its radiance), then a point
+ * y uniform on it.  y then has the density p_i / A_i per unit area, and,
+ * seen from x, p_i / A_i * r^2 / |cos theta'| per unit solid angle
+ * (dA = r^2 dw / |cos theta'|, r = |y - x|, theta' between the light's
+ * normal and y - x).  Rectangle lights are sampled one by one as before.
+ */
+struct light_picker {
+    int n; /* emitting triangles with non-zero power */
+    int *light; /* their indices in the scene's area lights */
+    real *cdf; /* cdf[k] = (Phi_0 + ... + Phi_k) / Phi, cdf[n - 1] = 1 */
+    real *prob; /* per area light of the scene: p_i, 0 for rectangles */
+};
+
+/* Build the picker of the scene's emitting triangles.  False (err says
+ * why) when memory runs out. */
+bool light_picker_build(struct light_picker *lp, const struct scene *s, struct diag *err);
+
+/* Free; accepts a zero-initialised picker. */
+void light_picker_free(struct light_picker *lp);
+
+/* Pick a triangle by power with u0 and a point y uniform on it with (u, v),
+ * all three uniform in [0, 1).  Returns its area light's index and sets *y
+ * and *pdf_area = p_i / A_i; -1 when there is no emitting triangle. */
+int light_picker_sample(
+    const struct light_picker *lp,
+    const struct scene *s,
+    real u0,
+    real u,
+    real v,
+    vec3 *y,
+    real *pdf_area);
+
+/* The density per unit solid angle, seen from x, of the point y of area
+ * light i as light_picker_sample draws it: p_i / A_i * r^2 / |cos theta'|;
+ * 0 for a rectangle light or when y is seen edge-on. */
+real light_picker_pdf_solid_angle(
+    const struct light_picker *lp,
+    const struct scene *s,
+    int i,
+    vec3 x,
+    vec3 y);
+
 /* The point of the light at (u, v) in [0,1)^2: uniform over its area. */
 vec3 sample_area_light(const struct area_light *light, real u, real v);
 
@@ -38,11 +85,13 @@ bool visible(const struct world *w, const struct hit *h, vec3 to, struct stats *
 vec3 transmittance(const struct world *w, const struct hit *h, vec3 to, struct stats *st);
 
 /* Irradiance at h from every light of the scene that h can see; area
- * lights are sampled with shadow rays as `sampling` says. */
+ * lights are sampled with shadow rays as `sampling` says, the emitting
+ * triangles together through `picker` (`samples` rays, no adaptive mode). */
 vec3 direct_irradiance(
     const struct world *w,
     const struct hit *h,
     const struct shadow_sampling *sampling,
+    const struct light_picker *picker,
     struct rng *rng,
     struct stats *st);
 

@@ -362,13 +362,16 @@ main(int argc, char **argv)
     rep.seconds_load = clock_seconds() - start;
     renderer.scene = &scene;
     renderer.world = world_make(&scene);
-    if (!build_acceleration(&renderer, use_bvh, &rep, &err)) {
+    if (!light_picker_build(&renderer.lights, &scene, &err)
+        || !build_acceleration(&renderer, use_bvh, &rep, &err)) {
         diag_print(stderr, &err, "error");
+        light_picker_free(&renderer.lights);
         scene_free(&scene);
         return EXIT_INPUT;
     }
     render_stop_on_interrupt();
     int status = render_and_write(&renderer, &opt, output, &rep, start);
+    light_picker_free(&renderer.lights);
     world_free(&renderer.world);
     scene_free(&scene);
     return status;

@@ -65,7 +65,7 @@ direct_light(
         sampling.samples = 0; /* area lights are left to the paths that hit them */
         sampling.adaptive[0] = 0;
     }
-    vec3 e = direct_irradiance(&renderer->world, h, &sampling, rng, st);
+    vec3 e = direct_irradiance(&renderer->world, h, &sampling, &renderer->lights, rng, st);
     return vec3_scale(vec3_mul(albedo, e), INV_PI);
 }
 
@@ -79,12 +79,12 @@ emitted(const struct renderer *renderer, const struct hit *h, const struct path 
     /* LAB 07: count a light's emission only where next-event estimation could not
      * have found it: after the camera ray or a specular bounce (docs/stages/07_pathtrace.md#lab)
      * stub: (void)path;
-     * return h->front_face ? renderer->scene->area_lights[h->light].radiance : vec3_splat(0); */
+     * return area_light_emitted(&renderer->scene->area_lights[h->light], h->front_face); */
     bool counted_by_nee = renderer->nee && !path->specular;
-    if (!h->front_face || counted_by_nee) {
+    if (counted_by_nee) {
         return vec3_splat(0);
     }
-    return renderer->scene->area_lights[h->light].radiance;
+    return area_light_emitted(&renderer->scene->area_lights[h->light], h->front_face);
     /* END LAB */
 }
 

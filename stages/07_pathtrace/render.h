@@ -37,6 +37,7 @@ struct renderer {
     struct world world;
     struct camera camera;
     struct shadow_sampling shadow;
+    struct light_picker lights; /* the emitting triangles, picked by power */
     int max_depth; /* longest chain of rays, the camera ray included */
     int spp; /* camera samples per pixel, over all passes */
     int spp_pass; /* of which each pass takes this many */

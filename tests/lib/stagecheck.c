@@ -174,6 +174,49 @@ stagecheck_normalize3(double a[3])
     a[2] /= len;
 }
 
+double
+stagecheck_polygon_irradiance(
+    double corners[][3],
+    int n_corners,
+    const double x[3],
+    const double n[3],
+    double radiance)
+{
+    double sum = 0;
+    for (int i = 0; i < n_corners; i++) {
+        const double *a = corners[i];
+        const double *b = corners[(i + 1) % n_corners];
+        double va[3] = {a[0] - x[0], a[1] - x[1], a[2] - x[2]};
+        double vb[3] = {b[0] - x[0], b[1] - x[1], b[2] - x[2]};
+        stagecheck_normalize3(va);
+        stagecheck_normalize3(vb);
+        double c[3];
+        stagecheck_cross3(va, vb, c);
+        double theta = atan2(sqrt(stagecheck_dot3(c, c)), stagecheck_dot3(va, vb));
+        sum += theta * stagecheck_dot3(n, c) / sqrt(stagecheck_dot3(c, c));
+    }
+    return radiance / 2 * fabs(sum);
+}
+
+double
+stagecheck_triangle_solid_angle(double corners[3][3], const double x[3])
+{
+    double v[3][3];
+    double len[3];
+    for (int k = 0; k < 3; k++) {
+        for (int j = 0; j < 3; j++) {
+            v[k][j] = corners[k][j] - x[j];
+        }
+        len[k] = sqrt(stagecheck_dot3(v[k], v[k]));
+    }
+    double bc[3];
+    stagecheck_cross3(v[1], v[2], bc);
+    double triple = fabs(stagecheck_dot3(v[0], bc));
+    double denom = len[0] * len[1] * len[2] + stagecheck_dot3(v[0], v[1]) * len[2]
+                   + stagecheck_dot3(v[0], v[2]) * len[1] + stagecheck_dot3(v[1], v[2]) * len[0];
+    return 2 * atan2(triple, denom);
+}
+
 void
 stagecheck_random_unit(struct rng *rng, double out[3])
 {

@@ -48,6 +48,27 @@ double stagecheck_dot3(const double a[3], const double b[3]);
 void stagecheck_cross3(const double a[3], const double b[3], double out[3]);
 void stagecheck_normalize3(double a[3]);
 
+/* Irradiance at the point x with unit normal n from a polygon of n_corners
+ * corners and radiance L, wholly above x's horizon: L times the projected
+ * solid angle, which by Lambert's formula (Photometria, 1760; Arvo,
+ * "Applications of Irradiance Tensors", SIGGRAPH 1995, eq. 10) is
+ *     E = L/2 |sum_i theta_i n . (v_i x v_i+1) / |v_i x v_i+1||
+ * with v_i the unit vectors from x to the corners and theta_i the angle
+ * between consecutive ones.  The polygon's orientation does not matter. */
+double stagecheck_polygon_irradiance(
+    double corners[][3],
+    int n_corners,
+    const double x[3],
+    const double n[3],
+    double radiance);
+
+/* The solid angle a triangle subtends at x (Van Oosterom and Strackee,
+ * "The Solid Angle of a Plane Triangle", IEEE Trans. Biomed. Eng., 1983):
+ *     tan(Omega / 2) = |a . (b x c)| / (abc + (a.b) c + (a.c) b + (b.c) a)
+ * with a, b, c the vectors from x to the corners and a, b, c also their
+ * lengths. */
+double stagecheck_triangle_solid_angle(double corners[3][3], const double x[3]);
+
 /* A direction uniform on the unit sphere (Archimedes: z uniform in
  * [-1, 1], the azimuth uniform), from rng.h's generator.  (Plain doubles,
  * so that this header does not bring vec3.h's <tgmath.h> into tests that

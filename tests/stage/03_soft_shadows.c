@@ -291,33 +291,14 @@ TEST(nothing_behind_the_light_is_lit)
 
 /* ---- Irradiance from a polygon (T9) ----------------------------------------- */
 
-/*
- * Irradiance at the origin (normal +y) from a polygon of radiance L that
- * faces it and lies wholly above its horizon: L times the projected solid
- * angle, which by Lambert's formula (Photometria, 1760; Arvo, "Applications
- * of Irradiance Tensors", SIGGRAPH 1995, eq. 10) is
- *     E = L/2 |sum_i theta_i n . (v_i x v_i+1) / |v_i x v_i+1||
- * with v_i the unit vectors to the corners and theta_i the angle between
- * consecutive ones.
- */
+/* Irradiance at the origin (normal +y) from a polygon of radiance L that
+ * faces it and lies wholly above its horizon (stagecheck.h). */
 static double
 polygon_irradiance(double corners[][3], int n, double radiance)
 {
+    static const double origin[3] = {0, 0, 0};
     static const double normal[3] = {0, 1, 0};
-    double sum = 0;
-    for (int i = 0; i < n; i++) {
-        const double *a = corners[i];
-        const double *b = corners[(i + 1) % n];
-        double la = sqrt(stagecheck_dot3(a, a));
-        double lb = sqrt(stagecheck_dot3(b, b));
-        double va[3] = {a[0] / la, a[1] / la, a[2] / la};
-        double vb[3] = {b[0] / lb, b[1] / lb, b[2] / lb};
-        double c[3];
-        stagecheck_cross3(va, vb, c);
-        double theta = atan2(sqrt(stagecheck_dot3(c, c)), stagecheck_dot3(va, vb));
-        sum += theta * stagecheck_dot3(normal, c) / sqrt(stagecheck_dot3(c, c));
-    }
-    return radiance / 2 * fabs(sum);
+    return stagecheck_polygon_irradiance(corners, n, origin, normal, radiance);
 }
 
 struct rect_light {
