@@ -2,11 +2,13 @@
  * gltf_files.cc - how the glTF loader reads files: the model file itself,
  * and tinygltf's filesystem callbacks, which confine external buffers to
  * relative URIs below the model's directory (no "..", no scheme, no
- * absolute path), within one byte budget, and never decode images.
+ * absolute path, no symbolic link leading out of it), within one byte
+ * budget, and never decode images.
  */
 #include "gltf_shim.h"
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 
 #include <fcntl.h>
@@ -120,6 +122,25 @@ uri_of(const fs_guard *guard, const std::string &path, std::string *uri)
     return true;
 }
 
+// Whether path, every symbolic link in it followed, is inside the directory
+// prefix names (itself resolved the same way): a link in the model's
+// directory may lead to another of its files, never out of it.
+static bool
+resolves_inside(const std::string &path, const std::string &prefix)
+{
+    char *file = realpath(path.c_str(), nullptr);
+    char *dir = realpath(prefix.c_str(), nullptr);
+    bool inside = false;
+    if (file && dir) {
+        size_t n = strlen(dir);
+        bool root = n == 1 && dir[0] == '/';
+        inside = strncmp(file, dir, n) == 0 && (root || file[n] == '/');
+    }
+    free(file);
+    free(dir);
+    return inside;
+}
+
 bool
 guarded_file_exists(const std::string &path, void *user)
 {
@@ -136,6 +157,10 @@ guarded_file_exists(const std::string &path, void *user)
     struct stat st;
     if (stat(path.c_str(), &st) != 0) {
         refuse(guard, uri, format("cannot be opened: %s", strerror(errno)));
+        return false;
+    }
+    if (!resolves_inside(path, guard->prefix)) {
+        refuse(guard, uri, "is refused: a symbolic link leads it outside the model's directory");
         return false;
     }
     return true;
@@ -158,7 +183,8 @@ guarded_read_file(
     fs_guard *guard = static_cast<fs_guard *>(user);
     std::string uri;
     std::string why;
-    if (!uri_of(guard, path, &uri) || !unsafe_uri_reason(uri).empty()) {
+    if (!uri_of(guard, path, &uri) || !unsafe_uri_reason(uri).empty()
+        || !resolves_inside(path, guard->prefix)) {
         uri = path;
         why = "it is outside the model's directory";
     } else if (read_file(path, guard->budget, out, &why)) {

@@ -1516,6 +1516,32 @@ TEST(external_buffers_outside)
     check_refused(gltf_with_uri("dir.bin"), "dir.bin");
 }
 
+/* Symbolic links in the model's directory: to one of its files, read; out
+ * of it (a file link, a directory link), refused. */
+TEST(external_buffers_symlinks)
+{
+    REQUIRE_GLTF();
+    mkdir(test_tmp_path("models"), 0755);
+    CHECK(write_tri_bin(test_tmp_path("models/tri.bin")));
+    CHECK(write_tri_bin(test_tmp_path("secret.bin")));
+    const char *links[][2] = {
+        {"tri.bin", "models/link_in.bin"},
+        {test_tmp_path("secret.bin"), "models/link_out.bin"},
+        {"..", "models/up"},
+    };
+    for (size_t i = 0; i < sizeof links / sizeof links[0]; i++) {
+        const char *at = test_tmp_path(links[i][1]);
+        unlink(at);
+        CHECK(symlink(links[i][0], at) == 0);
+    }
+    struct gltf_mesh m = {0};
+    CHECK(load(gltf_with_uri("link_in.bin"), &m));
+    CHECK(m.n_triangles == 1);
+    gltf_free(&m);
+    check_refused(gltf_with_uri("link_out.bin"), "symbolic link");
+    check_refused(gltf_with_uri("up/secret.bin"), "symbolic link");
+}
+
 TEST(data_uri)
 {
     REQUIRE_GLTF();
@@ -1684,6 +1710,7 @@ TEST_MAIN(
     TEST_ENTRY(instancing_total_limit),
     TEST_ENTRY(external_buffers_inside),
     TEST_ENTRY(external_buffers_outside),
+    TEST_ENTRY(external_buffers_symlinks),
     TEST_ENTRY(data_uri),
     TEST_ENTRY(size_limit),
     TEST_ENTRY(mutation_fuzz))
