@@ -388,6 +388,55 @@ TEST(one_render_alone_is_compared_but_not_tested)
     CHECK(compare(quiet, out) == 0 && strncmp(out, "not tested", 10) == 0);
 }
 
+/* A render whose only error is at an edge (a stage without anti-aliasing)
+ * passes a relMSE limit over the reference's smooth pixels only. */
+TEST(mask_smooth_leaves_edges_out)
+{
+    struct image ref = {0}, a = {0};
+    struct diag err;
+    char out[CAP];
+    make_reference(&ref);
+    CHECK(image_alloc(&a, W, H, &err));
+    for (int y = 0; y < H; y++) {
+        for (int x = 0; x < W; x++) {
+            for (int c = 0; c < 3; c++) {
+                /* A sharp edge at x = 30 in the reference, at x = 31 in the render. */
+                image_pixel(&ref, x, y)[c] *= x < 30 ? 1.0f : 0.25f;
+                image_pixel(&a, x, y)[c] = image_pixel(&ref, x, y)[c] * (x == 30 ? 4.0f : 1.0f);
+            }
+        }
+    }
+    CHECK(write_image(&ref, "ref.pfm") && write_image(&a, "a.pfm"));
+    const char *const all[] = {TMP("a.pfm"), TMP("ref.pfm"), "--max-relmse", "1e-6", NULL};
+    CHECK(compare(all, out) == 1);
+    const char *const smooth[] = {
+        TMP("a.pfm"),
+        TMP("ref.pfm"),
+        "--max-relmse",
+        "1e-6",
+        "--mask",
+        "smooth",
+        "--map",
+        TMP("masked.png"),
+        NULL};
+    CHECK_MSG(compare(smooth, out) == 0 && strstr(out, "smooth ones"), "%s", out);
+    struct image map = {0};
+    CHECK(imgread(TMP("masked.png"), &map, &err));
+    int scale = (ERRMAP_MIN_WIDTH + W - 1) / W;
+    if (map.rgb) { /* the edge and the border are grey: not compared */
+        const float *edge = image_pixel(&map, 30 * scale + scale / 2, 20 * scale);
+        const float *border = image_pixel(&map, scale / 2, scale / 2);
+        CHECK(srgb_encode8(edge[0]) == 120 && srgb_encode8(edge[1]) == 120);
+        CHECK(srgb_encode8(border[2]) == 120);
+    }
+    image_free(&map);
+    const char *const pair[] =
+        {TMP("a.pfm"), TMP("a.pfm"), TMP("ref.pfm"), "--mask", "smooth", NULL};
+    CHECK(compare(pair, out) == 2);
+    image_free(&ref);
+    image_free(&a);
+}
+
 TEST(identical_renders_are_called_out)
 {
     char out[CAP];
@@ -549,6 +598,7 @@ TEST_MAIN(
     TEST_ENTRY(a_planted_two_percent_bias_is_found_and_named),
     TEST_ENTRY(one_render_and_its_variance_image),
     TEST_ENTRY(one_render_alone_is_compared_but_not_tested),
+    TEST_ENTRY(mask_smooth_leaves_edges_out),
     TEST_ENTRY(identical_renders_are_called_out),
     TEST_ENTRY(nan_pixels_fail),
     TEST_ENTRY(bad_input_exits_2),

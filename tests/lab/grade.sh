@@ -18,6 +18,8 @@
 #                  handout's: a fresh handout of the same stage gets the
 #                  student's stages/NN_name/ (what make grade does); files
 #                  the student changed outside stages/ are listed
+#   --pages DIR    where the report pages go (default LAB/grade): one
+#                  compare page per reference render (grade-pages.sh)
 #   --timeout SEC  time limit of one test program (default 300; 0: none)
 #   --jobs N       parallel make jobs (default: the number of processors)
 #   --root DIR     the project, for --pristine (default: this script's)
@@ -31,15 +33,17 @@ LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 
 root=$(cd "$LAB_DIR/../.." && pwd)
 pristine=0
+pages=
 limit=300
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
 while [ $# -gt 0 ]; do
     case $1 in
         -h | --help) show_help "$0"; exit 0 ;;
         --pristine) pristine=1 ;;
-        --timeout | --jobs | --root)
+        --timeout | --jobs | --root | --pages)
             [ $# -ge 2 ] || usage_error "$1 needs a value"
             case $1 in
+                --pages) pages=$2 ;;
                 --timeout) limit=$2 ;;
                 --jobs) jobs=$2 ;;
                 --root) root=$(abs_dir "$2") ;;
@@ -114,6 +118,11 @@ for src in $(handout_tests "$dir"); do
     printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$(test_from "$src")" "$name" "$1" "$(($1 + $2))" "$note" "$names" \
         >>"$work/results"
 done
+
+if [ "$build" != failed ]; then
+    echo "report pages (how to read them: LAB.md, \"Reading the report pages\"):"
+    "$LAB_DIR/grade-pages.sh" "$dir" "$stage" "${pages:-$lab/grade}" || echo "note: some pages could not be written"
+fi
 
 awk -F '\t' -v nn="$nn" -v stage="$stage" -v build="$build" '
 function line(name, p, t, note, names,    s) {

@@ -8,7 +8,8 @@
 # make-lab.sh, make-diffs.sh, check-diffs.sh and make-branches.sh on a
 # miniature project written into a temporary directory (nothing is
 # compiled: check-labs.sh and grade.sh build real handouts, and run in
-# make test and make check-labs).  Prints one line per test and the closing
+# make test and make check-labs); grade-pages.sh on the project's own
+# build.  Prints one line per test and the closing
 # line "N passed, N failed, N skipped".  --keep keeps the temporary
 # directory and prints its name.
 # Exit status: 0 all passed, 1 a test failed, 2 usage.
@@ -429,8 +430,39 @@ test_branches() {
     check make-branches/force "$LAB_DIR/make-branches.sh" --force --root "$M" "$B"
 }
 
+# grade-pages.sh on the project's own build (make test builds it first):
+# a page per reference render of labs 03 (one render, relMSE limit) and 06
+# (two renders, block tests), each one file with its images embedded.
+test_grade_pages() {
+    root=$(cd "$LAB_DIR/../.." && pwd)
+    for gp_stage in 03_soft_shadows 06_supersample; do
+        if [ ! -x "$root/build/$gp_stage/render" ]; then
+            fail "grade-pages/$gp_stage" "no $root/build/$gp_stage/render: run make first"
+            continue
+        fi
+        if ! "$LAB_DIR/grade-pages.sh" "$root" "$gp_stage" "$T/pages/$gp_stage" >"$T/out" 2>&1; then
+            fail "grade-pages/$gp_stage" "$(cat "$T/out")"
+            continue
+        fi
+        gp_want=2
+        gp_verdict="within the limit"
+        if [ "$gp_stage" = 06_supersample ]; then
+            gp_want=1
+            gp_verdict="consistent with the reference"
+        fi
+        gp_pages=$(ls "$T/pages/$gp_stage"/*.html 2>/dev/null | wc -l)
+        gp_images=$(cat "$T/pages/$gp_stage"/*.html 2>/dev/null | grep -o 'src="data:image/png;base64,' | wc -l)
+        if [ "$gp_pages" -eq "$gp_want" ] && [ "$gp_images" -eq $((5 * gp_want)) ] &&
+            [ "$(grep -c "$gp_verdict" "$T/out")" -eq "$gp_want" ]; then
+            ok "grade-pages/$gp_stage"
+        else
+            fail "grade-pages/$gp_stage" "$gp_pages pages, $gp_images images" "$(cat "$T/out")"
+        fi
+    done
+}
+
 test_help() {
-    for hp_s in make-lab grade make-diffs check-diffs check-labs make-branches test-lab-tools; do
+    for hp_s in make-lab grade grade-pages make-diffs check-diffs check-labs make-branches test-lab-tools; do
         if "$LAB_DIR/$hp_s.sh" --help 2>&1 | head -n 1 | grep -q "^$hp_s.sh - "; then
             ok "help/$hp_s"
         else
@@ -453,6 +485,7 @@ if command -v git >/dev/null 2>&1; then
     test_diffs
     test_branches
 fi
+test_grade_pages
 test_help
 echo "$passed passed, $failed failed, 0 skipped"
 [ "$failed" -eq 0 ]

@@ -102,6 +102,7 @@ static const char style[] =
     "figure{margin:0;flex:1 1 300px;min-width:0}\n"
     "figcaption{font-weight:600;margin:4px 0}\n"
     "img{display:block;width:100%;height:auto;image-rendering:pixelated}\n"
+    "figure.slider{max-width:720px}\n"
     ".stack{position:relative}\n"
     ".stack img.over{position:absolute;top:0;left:0;clip-path:inset(0 50% 0 0)}\n"
     "input[type=range]{width:100%}\n"
@@ -180,6 +181,13 @@ put_numbers(FILE *f, const struct comparison *c)
         "<tr><th>size</th><td>%d &times; %d pixels</td></tr>\n",
         c->render.width,
         c->render.height);
+    if (c->mask) {
+        fprintf(
+            f,
+            "<tr><th>compared</th><td>%zu pixels: the reference's smooth ones (grey in the map: not "
+            "compared)</td></tr>\n",
+            c->n_masked);
+    }
     if (c->noise != NOISE_NONE) {
         fprintf(
             f,
@@ -243,9 +251,10 @@ write_page(FILE *f, const struct comparison *c, unsigned char *const png[3], con
     put_escaped(f, title);
     fprintf(f, "</title>\n<style>\n%s</style>\n</head>\n<body>\n<h1>", style);
     put_escaped(f, title);
-    const char *cls = c->noise == NOISE_NONE && c->status == COMPARE_AGREE ? "untested"
-                      : c->status == COMPARE_AGREE                         ? "agree"
-                                                                           : "biased";
+    const char *cls = c->noise == NOISE_NONE && c->status == COMPARE_AGREE && !(c->max_relmse > 0)
+                          ? "untested"
+                      : c->status == COMPARE_AGREE ? "agree"
+                                                   : "biased";
     fprintf(f, "</h1>\n<p class=\"verdict %s\" id=\"verdict\">", cls);
     put_escaped(f, c->verdict);
     fputs("</p>\n<div class=\"row\">\n<figure><figcaption>Render</figcaption>", f);
@@ -257,7 +266,7 @@ write_page(FILE *f, const struct comparison *c, unsigned char *const png[3], con
     fputs(
         "</figure>\n</div>\n<h2>Render over reference</h2>\n"
         "<p class=\"note\">Left of the edge: the render; right: the reference.  Drag the slider, or "
-        "flip between them.</p>\n<div class=\"row\"><figure><div class=\"stack\">",
+        "flip between them.</p>\n<div class=\"row\"><figure class=\"slider\"><div class=\"stack\">",
         f);
     put_image(f, png[1], n[1], NULL, NULL, "reference");
     put_image(f, png[0], n[0], "over", "over", "render");

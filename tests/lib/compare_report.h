@@ -38,6 +38,8 @@ struct comparison {
     double ref_rel_se, ref_dof; /* the reference's noise (0: exact) */
     bool ref_se_from_meta; /* ref_rel_se and ref_dof came from a META.json */
     double max_relmse; /* NOISE_NONE: relMSE above this fails; 0: no limit */
+    unsigned char *mask; /* --mask smooth: the pixels compared (NULL: all) */
+    size_t n_masked; /* pixels in the mask */
 
     /* What was compared: the mean of the renders (or the one render). */
     struct image render;

@@ -27,6 +27,7 @@ static const struct rgb8 diverging[5] = {
     {178, 24, 43},
 };
 static const struct rgb8 nonfinite_colour = {0, 170, 0};
+static const struct rgb8 masked_colour = {120, 120, 120};
 static const struct rgb8 outline_colour = {0, 0, 0};
 static const struct rgb8 paper = {255, 255, 255};
 static const struct rgb8 ink = {0, 0, 0};
@@ -296,6 +297,14 @@ static const struct glyph font[] = {
      "#...."
      "#...."
      "#####"},
+    {'M',
+     "#...#"
+     "##.##"
+     "#.#.#"
+     "#.#.#"
+     "#...#"
+     "#...#"
+     "#...#"},
     {'N',
      "#...#"
      "##..#"
@@ -312,6 +321,14 @@ static const struct glyph font[] = {
      "#...#"
      "#...#"
      ".###."},
+    {'P',
+     "####."
+     "#...#"
+     "#...#"
+     "####."
+     "#...."
+     "#...."
+     "#...."},
     {'R',
      "####."
      "#...#"
@@ -432,7 +449,7 @@ format_percent(char *buf, size_t cap, const char *sign, double range)
 
 /* The legend below the map, from row y0 of out, magnification f. */
 static void
-draw_legend(struct image *out, int y0, double range, int f)
+draw_legend(struct image *out, int y0, double range, bool masked, int f)
 {
     int margin = 6 * f, line = (GLYPH_H + 2) * f, bar_h = 10 * f;
     int x0 = margin, x1 = out->width - margin;
@@ -458,6 +475,11 @@ draw_legend(struct image *out, int y0, double range, int f)
     x += text_width("FAILING BLOCK ", f) + 3 * f;
     fill_rect(out, x, y, GLYPH_H * f, GLYPH_H * f, nonfinite_colour);
     draw_text(out, x + (GLYPH_H + 3) * f, y, "NAN OR INF", f);
+    if (masked) {
+        x += (GLYPH_H + 3) * f + text_width("NAN OR INF ", f) + 3 * f;
+        fill_rect(out, x, y, GLYPH_H * f, GLYPH_H * f, masked_colour);
+        draw_text(out, x + (GLYPH_H + 3) * f, y, "NOT COMPARED", f);
+    }
 }
 
 /* Rows the legend takes at magnification f (draw_legend's layout). */
@@ -473,6 +495,7 @@ errmap_draw(
     const struct image *render,
     const struct image *ref,
     double range,
+    const unsigned char *mask,
     const struct errmap_box *boxes,
     int n_boxes,
     struct image *out,
@@ -486,10 +509,10 @@ errmap_draw(
     int s = (ERRMAP_MIN_WIDTH + render->width - 1) / render->width;
     s = s < 1 ? 1 : s > 16 ? 16 : s;
     int width = render->width * s;
-    /* The legend needs about 40 characters across; bigger text on big maps. */
+    /* The legend needs about 50 characters across; bigger text on big maps. */
     int f = width >= 4 * ERRMAP_MIN_WIDTH ? 3 : width >= 2 * ERRMAP_MIN_WIDTH ? 2 : 1;
-    if (width < 40 * (GLYPH_W + 1) * f) {
-        width = 40 * (GLYPH_W + 1) * f;
+    if (width < 50 * (GLYPH_W + 1) * f) {
+        width = 50 * (GLYPH_W + 1) * f;
     }
     int map_h = render->height * s;
     if (!image_alloc(out, width, map_h + legend_height(f), err)) {
@@ -498,7 +521,9 @@ errmap_draw(
     fill_rect(out, 0, 0, out->width, out->height, paper);
     for (int y = 0; y < render->height; y++) {
         for (int x = 0; x < render->width; x++) {
-            struct rgb8 c = colour_of(errmap_pixel_error(render, ref, x, y), range);
+            bool compared = !mask || mask[(size_t)y * (size_t)render->width + (size_t)x];
+            struct rgb8 c =
+                compared ? colour_of(errmap_pixel_error(render, ref, x, y), range) : masked_colour;
             fill_rect(out, x * s, y * s, s, s, c);
         }
     }
@@ -507,6 +532,6 @@ errmap_draw(
         const struct errmap_box *b = &boxes[i];
         outline_rect(out, b->x0 * s, b->y0 * s, b->w * s, b->h * s, thick, outline_colour);
     }
-    draw_legend(out, map_h, range, f);
+    draw_legend(out, map_h, range, mask != NULL, f);
     return true;
 }

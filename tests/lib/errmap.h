@@ -9,7 +9,8 @@
  * agrees, red where it is brighter, saturating at -range and +range (the
  * colours of ColorBrewer's RdBu scheme, Brewer & Harrower,
  * colorbrewer2.org).  Pixels whose render or reference is NaN or infinite
- * are green.  Failing blocks are outlined in black.  Below the map a
+ * are green; pixels left out by a mask grey.  Failing blocks are outlined
+ * in black.  Below the map a
  * legend: the colour bar with its ends and centre labelled, and the key of
  * the outline and of green.  Small images are magnified by a whole factor
  * so the map is at least ERRMAP_MIN_WIDTH pixels wide.
@@ -39,11 +40,14 @@ double errmap_pixel_error(const struct image *render, const struct image *ref, i
 double errmap_auto_range(const struct image *render, const struct image *ref);
 
 /* Draw the map of render against ref (same size) with the boxes outlined
- * into out (allocated here; linear RGB, to be written as PNG). */
+ * into out (allocated here; linear RGB, to be written as PNG).  With a mask
+ * (width * height bytes, metrics.h), pixels outside it are grey and the
+ * legend says "not compared". */
 bool errmap_draw(
     const struct image *render,
     const struct image *ref,
     double range,
+    const unsigned char *mask,
     const struct errmap_box *boxes,
     int n_boxes,
     struct image *out,

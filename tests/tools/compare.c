@@ -40,6 +40,7 @@ struct args {
     double range; /* 0: automatic */
     bool quiet;
     bool ref_se_given;
+    bool smooth_mask;
 };
 
 static const char usage_line[] = "usage: compare [options] RENDER [RENDER2 ...] REFERENCE\n";
@@ -77,6 +78,9 @@ usage(FILE *f)
         "  --html FILE.html    write a self-contained report page\n"
         "  --title TEXT        the report page's title\n"
         "  --max-relmse X      with one render alone: fail when relMSE > X\n"
+        "  --mask smooth       with one render alone: compare only the reference's\n"
+        "                      smooth pixels (3x3 luminance within 5%, no border):\n"
+        "                      for stages without anti-aliasing, whose edges differ\n"
         "  -q, --quiet         print only the verdict\n"
         "  -h, --help          this text\n"
         "\n"
@@ -120,6 +124,12 @@ parse_valued(struct args *a, const char *name, const char *value)
         a->html_path = value;
     } else if (strcmp(name, "--title") == 0) {
         c->title = value;
+    } else if (strcmp(name, "--mask") == 0) {
+        if (strcmp(value, "smooth") != 0) {
+            fprintf(stderr, "compare: error: --mask takes 'smooth', got '%s'\n", value);
+            return false;
+        }
+        a->smooth_mask = true;
     } else if (strcmp(name, "--variance-dof") == 0) {
         return parse_number(name, value, 0, 1e9, &c->pixel_dof);
     } else if (strcmp(name, "--block") == 0) {
@@ -161,6 +171,7 @@ takes_value(const char *s)
         "--range",
         "--html",
         "--title",
+        "--mask",
         "--max-relmse"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++) {
         if (strcmp(s, valued[i]) == 0) {
@@ -207,6 +218,12 @@ parse_args(int argc, char **argv, struct args *a)
     a->c.render_paths = a->paths;
     a->c.k = a->n_paths - 1;
     a->c.reference_path = a->paths[a->n_paths - 1];
+    if (a->smooth_mask && (a->c.variance_path || a->c.k > 1)) {
+        fprintf(
+            stderr,
+            "compare: error: --mask goes with one render alone (the block tests use every pixel)\n");
+        return 2;
+    }
     if (a->c.variance_path && a->c.k > 1) {
         fprintf(stderr, "compare: error: --variance goes with one render, not %d\n", a->c.k);
         return 2;
@@ -422,16 +439,18 @@ find_worst(struct comparison *c)
     c->worst_error = 0;
     for (int i = 0; i < bx * by; i++) {
         int x0 = (i % bx) * bs, y0 = (i / bx) * bs;
-        double sx = 0, sr = 0;
+        double sx = 0, sr = 0, n = 0;
         for (int y = y0; y < y0 + bs && y < c->render.height; y++) {
             for (int x = x0; x < x0 + bs && x < c->render.width; x++) {
-                sx += metrics_luminance(image_pixel(&c->render, x, y));
-                sr += metrics_luminance(image_pixel(&c->reference, x, y));
+                if (!c->mask || c->mask[(size_t)y * (size_t)c->render.width + (size_t)x]) {
+                    sx += metrics_luminance(image_pixel(&c->render, x, y));
+                    sr += metrics_luminance(image_pixel(&c->reference, x, y));
+                    n++;
+                }
             }
         }
-        double n = (double)(fmin(bs, c->render.width - x0) * fmin(bs, c->render.height - y0));
         double e = (sx / n - sr / n) / sqrt(sr / n * (sr / n) + METRICS_RELMSE_EPS);
-        if (c->worst < 0 || !(fabs(e) <= fabs(c->worst_error))) {
+        if (n > 0 && (c->worst < 0 || !(fabs(e) <= fabs(c->worst_error)))) {
             c->worst = i;
             c->worst_error = e;
             if (!isfinite(e)) {
@@ -460,6 +479,13 @@ decide(struct comparison *c)
                 c->verdict,
                 sizeof c->verdict,
                 "too far: relMSE %.3g is above the limit %.3g",
+                m->relmse,
+                c->max_relmse);
+        } else if (c->max_relmse > 0) {
+            snprintf(
+                c->verdict,
+                sizeof c->verdict,
+                "within the limit: relMSE %.3g is at most %.3g (one render: noise not told from bias)",
                 m->relmse,
                 c->max_relmse);
         } else {
@@ -504,6 +530,12 @@ print_text(const struct comparison *c)
             c->ref_se_from_meta ? ", from its META.json" : "");
     }
     printf("\nsize       %dx%d\n", c->render.width, c->render.height);
+    if (c->mask) {
+        printf(
+            "compared   %zu of %d pixels: the reference's smooth ones (--mask smooth)\n",
+            c->n_masked,
+            c->render.width * c->render.height);
+    }
     printf("relMSE     %.4g\n", m->relmse);
     printf("RMSE       %.4g\n", m->rmse);
     char means[160];
@@ -572,7 +604,7 @@ draw_map(const struct comparison *c, double range, struct image *map, struct dia
         const struct metrics_block *b = &c->blocks.blocks[c->failing[i]];
         boxes[i] = (struct errmap_box){b->x0, b->y0, b->w, b->h};
     }
-    bool ok = errmap_draw(&c->render, &c->reference, range, boxes, c->n_failing, map, err);
+    bool ok = errmap_draw(&c->render, &c->reference, range, c->mask, boxes, c->n_failing, map, err);
     free(boxes);
     return ok;
 }
@@ -584,7 +616,16 @@ run(struct args *a, struct diag *err)
     if (!a->ref_se_given) {
         reference_noise_from_meta(c);
     }
-    if (!load_inputs(c, err) || !metrics_compare(&c->render, &c->reference, NULL, &c->m, err)) {
+    if (!load_inputs(c, err)) {
+        return false;
+    }
+    if (a->smooth_mask) {
+        c->mask = metrics_smooth_mask(&c->reference, METRICS_SMOOTH_TOLERANCE, &c->n_masked, err);
+        if (!c->mask) {
+            return false;
+        }
+    }
+    if (!metrics_compare(&c->render, &c->reference, c->mask, &c->m, err)) {
         return false;
     }
     if (c->noise != NOISE_NONE && !test_blocks(c, err)) {
@@ -612,6 +653,7 @@ release(struct comparison *c)
     image_free(&c->variance);
     metrics_block_stats_free(&c->blocks);
     free(c->failing);
+    free(c->mask);
 }
 
 int

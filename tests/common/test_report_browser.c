@@ -1,0 +1,319 @@
+/*
+ * test_report_browser.c - compare's report page (compare --html) rendered
+ * by a real browser: headless Chromium takes screenshots of the page at a
+ * desktop and at a phone width, and the test reads their pixels.
+ *
+ * The inputs are flat colours nothing else on the page uses: renders of
+ * green (linear 0.1, 0.6, 0.1) against a magenta reference (0.6, 0.1,
+ * 0.6), so the render is brighter everywhere and the verdict is "biased".
+ * In the screenshot the test finds the render's green and the reference's
+ * magenta (the embedded images decoded and shown), the error map's red,
+ * the red verdict box; side by side on the desktop and one above the other
+ * on the phone; and the render over the reference, cut by the slider.
+ *
+ * Chromium: $CHROMIUM, else /usr/bin/chromium (Debian's package); skipped
+ * with a message when there is none.  It runs with a fresh profile, HOME
+ * and TMPDIR in a directory of its own, removed afterwards.
+ */
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "image.h"
+#include "imgread.h"
+#include "testlib.h"
+
+#define W 64
+#define H 48
+#define CAP 16384
+
+/* A flat image of linear colour rgb, with noise of relative size 0.002
+ * from `seed` so that two renders differ. */
+static bool
+write_flat(const char *name, const float rgb[3], unsigned seed)
+{
+    struct image img = {0};
+    struct diag err = {0};
+    bool ok = image_alloc(&img, W, H, &err);
+    uint32_t s = seed * 2654435761u + 1;
+    for (int i = 0; ok && i < W * H * 3; i++) {
+        s = s * 1664525u + 1013904223u; /* Numerical Recipes' LCG: test noise */
+        double u = (s >> 8) / 16777216.0 - 0.5;
+        img.rgb[i] = (float)(rgb[i % 3] * (1 + (seed ? 0.004 * u : 0)));
+    }
+    ok = ok && image_write(&img, test_tmp_path(name), &err);
+    image_free(&img);
+    return ok;
+}
+
+static const char *
+chromium_path(void)
+{
+    const char *env = getenv("CHROMIUM");
+    if (env && env[0]) {
+        return env;
+    }
+    static const char *const candidates[] = {"/usr/bin/chromium", "/usr/bin/chromium-browser"};
+    for (size_t i = 0; i < sizeof candidates / sizeof candidates[0]; i++) {
+        if (access(candidates[i], X_OK) == 0) {
+            return candidates[i];
+        }
+    }
+    return NULL;
+}
+
+/* Screenshot of page at width x height into shot (a PNG path). */
+static bool
+screenshot(const char *chromium, const char *page, int width, int height, const char *shot)
+{
+    const char *home = test_tmp_path("chromium-home");
+    char make_dir[4200], profile[4200], tmp[4200], home_env[4200], size[64], out[4200], url[4200];
+    snprintf(profile, sizeof profile, "--user-data-dir=%s/profile", home);
+    snprintf(tmp, sizeof tmp, "TMPDIR=%s", home);
+    snprintf(home_env, sizeof home_env, "HOME=%s", home);
+    snprintf(size, sizeof size, "--window-size=%d,%d", width, height);
+    snprintf(out, sizeof out, "--screenshot=%s", shot);
+    snprintf(url, sizeof url, "file://%s", page);
+    snprintf(make_dir, sizeof make_dir, "%s", home);
+    const char *const mkdir_argv[] = {"/bin/mkdir", "-p", make_dir, NULL};
+    CHECK(test_run(mkdir_argv, NULL, 0) == 0);
+    const char *const argv[] = {
+        "/usr/bin/env",
+        tmp,
+        home_env,
+        "/usr/bin/timeout",
+        "120",
+        chromium,
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        "--hide-scrollbars",
+        profile,
+        size,
+        out,
+        url,
+        NULL};
+    char output[CAP];
+    int status = test_run(argv, output, sizeof output);
+    const char *const rm_argv[] = {"/bin/rm", "-rf", make_dir, NULL};
+    CHECK(test_run(rm_argv, NULL, 0) == 0);
+    CHECK(!test_file_exists(home));
+    CHECK_MSG(status == 0 && test_file_exists(shot), "chromium exit %d:\n%s", status, output);
+    return status == 0 && test_file_exists(shot);
+}
+
+static bool
+near(const int *p, int r, int g, int b, int tol)
+{
+    return abs(p[0] - r) <= tol && abs(p[1] - g) <= tol && abs(p[2] - b) <= tol;
+}
+
+enum colour_class {
+    OTHER,
+    GREEN,
+    MAGENTA,
+    MAP_RED,
+    VERDICT
+};
+
+static enum colour_class
+classify(const float *q)
+{
+    int p[3] = {srgb_encode8(q[0]), srgb_encode8(q[1]), srgb_encode8(q[2])};
+    if (near(p, 89, 203, 89, 12)) { /* sRGB of linear 0.1, 0.6, 0.1 */
+        return GREEN;
+    }
+    if (near(p, 203, 89, 203, 12)) {
+        return MAGENTA;
+    }
+    if (near(p, 0xf8, 0xc8, 0xc0, 4)) { /* the biased verdict's background */
+        return VERDICT;
+    }
+    if (p[0] > 150 && p[1] < 110 && p[2] < 110 && p[0] - p[1] > 90) { /* RdBu's reds */
+        return MAP_RED;
+    }
+    return OTHER;
+}
+
+/* The first row holding `k`, or -1. */
+static int
+first_row(const struct image *shot, enum colour_class k)
+{
+    for (int y = 0; y < shot->height; y++) {
+        for (int x = 0; x < shot->width; x++) {
+            if (classify(image_pixel(shot, x, y)) == k) {
+                return y;
+            }
+        }
+    }
+    return -1;
+}
+
+/* Pixels of class k above row `below`. */
+static long
+count_above(const struct image *shot, enum colour_class k, int below)
+{
+    long n = 0;
+    for (int y = 0; y < below && y < shot->height; y++) {
+        for (int x = 0; x < shot->width; x++) {
+            n += classify(image_pixel(shot, x, y)) == k;
+        }
+    }
+    return n;
+}
+
+/* The classes met along row y from left to right, each run of at least
+ * min_run pixels once, as a string: "GMRRRR" for green, magenta and four
+ * runs of map red. */
+static void
+row_runs(const struct image *shot, int y, int min_run, char *out, size_t cap)
+{
+    static const char letters[] = ".GMRV";
+    size_t n = 0;
+    int run = 0;
+    enum colour_class current = OTHER;
+    for (int x = 0; x <= shot->width; x++) {
+        enum colour_class k = x < shot->width ? classify(image_pixel(shot, x, y)) : OTHER;
+        if (k == current) {
+            run++;
+            continue;
+        }
+        if (current != OTHER && run >= min_run && n + 1 < cap) {
+            out[n++] = letters[current];
+        }
+        current = k;
+        run = 1;
+    }
+    out[n] = '\0';
+}
+
+static bool
+read_shot(const char *path, struct image *shot)
+{
+    struct diag err = {0};
+    bool ok = imgread(path, shot, &err);
+    CHECK_MSG(ok, "%s: %s", err.file, err.msg);
+    return ok;
+}
+
+/* Write the page; false (and skip) without Chromium. */
+static const char *
+write_page(void)
+{
+    static const float green[3] = {0.1f, 0.6f, 0.1f};
+    static const float magenta[3] = {0.6f, 0.1f, 0.6f};
+    CHECK(
+        write_flat("a.pfm", green, 1) && write_flat("b.pfm", green, 2)
+        && write_flat("ref.pfm", magenta, 0));
+    const char *page = test_tmp_path("page.html");
+    const char *const args[] = {
+        test_tmp_path("a.pfm"),
+        test_tmp_path("b.pfm"),
+        test_tmp_path("ref.pfm"),
+        "--html",
+        page,
+        NULL};
+    char out[CAP];
+    int status = test_run_tool("compare", args, out, sizeof out);
+    CHECK_MSG(status == 1, "compare: exit %d\n%s", status, out);
+    return page;
+}
+
+/* The page in Chromium at width x height, read back into shot. */
+static bool
+page_screenshot(const char *chromium, int width, int height, const char *name, struct image *shot)
+{
+    const char *page = write_page();
+    const char *path = test_tmp_path(name);
+    return screenshot(chromium, page, width, height, path) && read_shot(path, shot);
+}
+
+/* Where the images start (the render's first row), the colour runs along
+ * a row 20 pixels below that (runs of at least min_run), and the verdict
+ * box's pixels above it. */
+struct layout {
+    int top;
+    char runs[32];
+    long verdict;
+};
+
+static struct layout
+page_layout(const struct image *shot, int min_run, const char *what)
+{
+    struct layout l = {.top = first_row(shot, GREEN)};
+    if (l.top >= 0) {
+        row_runs(shot, l.top + 20, min_run, l.runs, sizeof l.runs);
+    }
+    l.verdict = count_above(shot, VERDICT, l.top);
+    printf(
+        "%s: images from row %d; along row %d: %s; verdict box %ld pixels above\n",
+        what,
+        l.top,
+        l.top + 20,
+        l.runs,
+        l.verdict);
+    return l;
+}
+
+#define NO_CHROMIUM \
+    "no Chromium: apt-get install chromium (or set CHROMIUM) to test the report page in a browser"
+
+TEST(report_page_in_chromium_on_a_desktop)
+{
+    const char *chromium = chromium_path();
+    if (!chromium) {
+        SKIP(NO_CHROMIUM);
+    }
+    struct image shot = {0};
+    if (!page_screenshot(chromium, 1200, 900, "desktop.png", &shot)) {
+        return;
+    }
+    CHECK(shot.width == 1200);
+    /* Render, reference and error map side by side, each about a third of
+     * the width: along a row through their tops, green then magenta then
+     * the map's red (cut into runs of ~90 by its outlines); the red verdict
+     * box above them. */
+    struct layout l = page_layout(&shot, 60, "desktop");
+    CHECK(strncmp(l.runs, "GMR", 3) == 0 && strspn(l.runs + 2, "R") == strlen(l.runs + 2));
+    CHECK(l.verdict > 10000);
+    /* Below them the render over the reference, cut by the slider at half
+     * its width: the bottom row of the screenshot crosses it. */
+    char slider[32] = "";
+    row_runs(&shot, shot.height - 10, 100, slider, sizeof slider);
+    printf("desktop: along row %d: %s\n", shot.height - 10, slider);
+    CHECK(strcmp(slider, "GM") == 0);
+    image_free(&shot);
+}
+
+TEST(report_page_in_chromium_on_a_phone)
+{
+    const char *chromium = chromium_path();
+    if (!chromium) {
+        SKIP(NO_CHROMIUM);
+    }
+    struct image shot = {0};
+    if (!page_screenshot(chromium, 390, 1400, "phone.png", &shot)) {
+        return;
+    }
+    /* One column: the render alone across the width, the reference below
+     * it, the verdict above. */
+    struct layout l = page_layout(&shot, 300, "phone");
+    int magenta = first_row(&shot, MAGENTA);
+    printf("phone: reference from row %d\n", magenta);
+    CHECK(strcmp(l.runs, "G") == 0);
+    CHECK(magenta > l.top + 250);
+    CHECK(l.verdict > 5000);
+    image_free(&shot);
+}
+
+TEST_MAIN(
+    TEST_ENTRY(report_page_in_chromium_on_a_desktop),
+    TEST_ENTRY(report_page_in_chromium_on_a_phone))

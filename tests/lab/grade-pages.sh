@@ -1,0 +1,102 @@
+#!/bin/sh
+# grade-pages.sh - a compare report page for each reference render of a lab.
+#
+#   grade-pages.sh [--help] HANDOUT STAGE OUT
+#
+# HANDOUT is a built lab handout (grade.sh's copy), STAGE its stage
+# (05_bvh).  For every Mitsuba reference the stage's tests compare with
+# (tests/reference/), renders the scene with the handout's render at the
+# reference's size, runs build/tools/compare with --html, and writes
+# OUT/NAME.html (the render, the reference, the error map, the numbers and
+# the verdict; how to read it: the handout's LAB.md, "Reading the report
+# pages").  Prints one line per page: its verdict and path.
+#
+# What is compared, as the stage's own tests do it:
+#   stages 02-05  cornell_diffuse_point_direct: one render, the reference's
+#                 smooth pixels only (no anti-aliasing before stage 06, so
+#                 edges differ by design), relMSE limit 1e-5
+#   stages 03-05  cornell_diffuse_area_direct: one render with 64 shadow
+#                 samples, smooth pixels, relMSE limit 5e-5
+#   stage 06      cornell_diffuse_point_direct: two renders of 64 spp with
+#                 different seeds, block tests (noise or bias)
+#   stage 07      the three *_gi references: two renders of 64 spp each,
+#                 block tests
+# Exit status: 0 pages written (whatever their verdicts), 1 a render or a
+# page failed, 2 usage.
+set -eu
+
+PROG=grade-pages.sh
+LAB_DIR=$(cd "$(dirname "$0")" && pwd)
+. "$LAB_DIR/lablib.sh"
+
+case ${1:-} in -h | --help) show_help "$0"; exit 0 ;; esac
+[ $# -eq 3 ] || usage_error "expected HANDOUT STAGE OUT, got $# argument(s)"
+dir=$(abs_dir "$1")
+stage=$2
+out=$3
+nn=${stage%%_*}
+render=$dir/build/$stage/render
+compare=$dir/build/tools/compare
+refs=$dir/tests/reference
+[ -x "$render" ] || die "no render program in $dir/build/$stage (the stage did not build)"
+lab_make -C "$dir/tests" tools >/dev/null 2>&1 || die "the tools of $dir/tests/tools do not build"
+mkdir -p "$out"
+work=$(mktemp -d "${TMPDIR:-/tmp}/grade-pages.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+trap 'exit 1' HUP INT TERM
+
+failed=0
+# page NAME SCENE RENDERS "RENDER OPTIONS" [COMPARE OPTIONS...]
+page() {
+    pg_name=$1
+    pg_scene=$dir/scenes/$2.scene
+    pg_renders=$3
+    pg_options=$4
+    shift 4
+    pg_inputs=
+    pg_i=1
+    while [ "$pg_i" -le "$pg_renders" ]; do
+        # shellcheck disable=SC2086 # the options are words
+        if ! "$render" -q -W 256 -H 256 $pg_options --seed "$pg_i" -o "$work/$pg_name.$pg_i.pfm" "$pg_scene" \
+            >"$work/render.log" 2>&1; then
+            echo "    $pg_name: the render failed:"
+            sed -n '1,5s/^/        /p' "$work/render.log"
+            failed=1
+            return 0
+        fi
+        pg_inputs="$pg_inputs $work/$pg_name.$pg_i.pfm"
+        pg_i=$((pg_i + 1))
+    done
+    pg_status=0
+    # shellcheck disable=SC2086
+    "$compare" -q --title "lab $nn: $pg_name" --html "$out/$pg_name.html" "$@" $pg_inputs \
+        "$refs/$pg_name.pfm" >"$work/verdict" 2>&1 || pg_status=$?
+    if [ "$pg_status" -ge 2 ]; then
+        echo "    $pg_name: compare failed: $(cat "$work/verdict")"
+        failed=1
+    else
+        echo "    $pg_name: $(cat "$work/verdict")"
+        echo "        $out/$pg_name.html"
+    fi
+}
+
+case $nn in
+    01) echo "    none: stage 01 has no shadows, and every reference has them" ;;
+    02 | 03 | 04 | 05)
+        page cornell_diffuse_point_direct cornell_diffuse_point 1 "" --mask smooth --max-relmse 1e-5
+        ;;
+esac
+case $nn in
+    03 | 04 | 05)
+        page cornell_diffuse_area_direct cornell_diffuse_area 1 "--shadow-samples 64" --mask smooth --max-relmse 5e-5
+        ;;
+    06)
+        page cornell_diffuse_point_direct cornell_diffuse_point 2 "--spp 64"
+        ;;
+    07)
+        for scene in cornell_diffuse_point cornell_diffuse_area cornell_specular_area; do
+            page "${scene}_gi" "$scene" 2 "--spp 64"
+        done
+        ;;
+esac
+exit "$failed"
