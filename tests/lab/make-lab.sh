@@ -219,6 +219,8 @@ write_labmd() {
         echo "has: they pass now and must still pass when you are done."
         echo
         test_list earlier
+        echo
+        sed -e "s/@STAGE@/$stage/g" -e "s/@NN@/$nn/g" "$LAB_DIR/report-pages.md"
     } >"$tmp/LAB.md"
     rm -f "$tmp/.assets" "$tmp/.section"
 }

@@ -324,7 +324,9 @@ EOF
     if grep -q '^# Lab 02: the answer$' "$H/LAB.md" && grep -q '^Compute the answer' "$H/LAB.md" &&
         grep -q '](docs/images/ref.png)' "$H/LAB.md" &&
         grep -q '`stages/02_b/main.c`, line 4: compute the answer (LAB.md)' "$H/LAB.md" &&
-        grep -q '`tests/stage/02-03_range.c`' "$H/LAB.md" && ! grep -q '^## More' "$H/LAB.md"; then
+        grep -q '`tests/stage/02-03_range.c`' "$H/LAB.md" && ! grep -q '^## More' "$H/LAB.md" &&
+        grep -q '^## Is my image right? Reading the report pages' "$H/LAB.md" &&
+        grep -q 'build/02_b/render -W 256' "$H/LAB.md"; then
         ok make-lab/lab-md
     else
         fail make-lab/lab-md "$(cat "$H/LAB.md")"
