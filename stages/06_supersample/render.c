@@ -218,7 +218,7 @@ adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng,
      * return vec3_scale(sum, 1 / (real)renderer->spp); */
     real lo = REAL_MAX;
     real hi = -REAL_MAX;
-    int probes = renderer->spp < 4 ? renderer->spp : 4;
+    int probes = renderer->spp < AA_PROBES ? renderer->spp : AA_PROBES;
     vec3 sum = sum_samples(renderer, px, py, AA_JITTER, probes, rng, st, &lo, &hi);
     bool agree = !(hi - lo > renderer->aa_threshold * (hi + lo));
     if (agree || probes == renderer->spp) {

@@ -26,6 +26,14 @@ enum aa_pattern {
     AA_ADAPTIVE, /* a few jittered samples; all spp only where they disagree */
 };
 
+/* Probe samples of adaptive sampling.  A pixel costs this many samples where
+ * the probes agree (most of an image) and spp where they do not: four, about
+ * one per quarter of the pixel, cost a smooth pixel 1/16 of --spp 64.  A
+ * feature all the probes miss is never refined
+ * (docs/stages/06_supersample.md); more probes find thinner features, but
+ * every pixel pays for them. */
+#define AA_PROBES 4
+
 /* The extra statistics counter: pixels adaptive sampling refined. */
 #define STAT_AA_REFINED 1
 

@@ -141,7 +141,7 @@ russian_roulette(struct path *path, struct rng *rng)
     if (path->depth < RR_MIN_DEPTH) {
         return;
     }
-    real q = fmin(vec3_max_comp(path->beta), (real)0.95);
+    real q = fmin(vec3_max_comp(path->beta), (real)RR_MAX_SURVIVAL);
     if (rng_uniform(rng) >= q) {
         path->beta = vec3_splat(0);
     } else {
@@ -293,7 +293,7 @@ adaptive_pixel(
     real lo = REAL_MAX;
     real hi = -REAL_MAX;
     int n = renderer->spp_pass;
-    int probes = n < 4 ? n : 4;
+    int probes = n < AA_PROBES ? n : AA_PROBES;
     vec3 sum = sum_samples(renderer, px, py, AA_JITTER, first, probes, rng, st, &lo, &hi);
     bool agree = !(hi - lo > renderer->aa_threshold * (hi + lo));
     if (agree || probes == n) {

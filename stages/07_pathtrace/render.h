@@ -22,12 +22,27 @@
 /* Russian roulette starts once a path has this many rays (camera ray = 1). */
 #define RR_MIN_DEPTH 3
 
+/* Russian roulette's survival probability is at most this: a path whose
+ * throughput is 1 or more (white diffuse, mirror, glass) still ends with
+ * probability 5% at each bounce, so even in a closed white room a path has
+ * on average at most 1 / 0.05 = 20 more rays; the price is a little variance
+ * on bright paths.  pbrt (3rd edition, PathIntegrator) uses the same cap. */
+#define RR_MAX_SURVIVAL 0.95
+
 /* Where a pixel's camera samples go (ORDER: the --aa choices). */
 enum aa_pattern {
     AA_GRID, /* a regular k x k grid (spp = k^2) */
     AA_JITTER, /* one random sample in each cell of that grid */
     AA_ADAPTIVE, /* a few jittered samples; all spp only where they disagree */
 };
+
+/* Probe samples of adaptive sampling.  A pixel costs this many samples where
+ * the probes agree (most of an image) and spp where they do not: four, about
+ * one per quarter of the pixel, cost a smooth pixel 1/16 of --spp 64.  A
+ * feature all the probes miss is never refined
+ * (docs/stages/06_supersample.md); more probes find thinner features, but
+ * every pixel pays for them. */
+#define AA_PROBES 4
 
 /* The extra statistics counter: pixels adaptive sampling refined. */
 #define STAT_AA_REFINED 1
