@@ -2,7 +2,8 @@
  * diag.h - diagnostics: where something went wrong and what.
  *
  * Library code never prints and never exits: it fills a struct diag and
- * returns false (or NULL).  main() prints the diagnostic in GNU's format,
+ * returns false (or NULL).  main() (through run.c, its shared plumbing)
+ * prints the diagnostic in GNU's format,
  *     FILE:LINE:COL: error: MESSAGE
  * which editors, grep and CI annotations understand, and picks the exit
  * status.  A diagnostic without a line (an I/O error) prints as FILE: error:.

@@ -1,0 +1,256 @@
+/*
+ * run.c - the plumbing around a stage's render (run.h): the steps every
+ * stage's main() takes, in the order it takes them.
+ */
+#include "run.h"
+
+#include <limits.h>
+#include <unistd.h>
+
+#include "feature_table.h"
+#include "image.h"
+
+/* Print err, remember the exit status, and tell the caller to stop. */
+static bool
+stop(struct run *run, const struct diag *err, int status)
+{
+    diag_print(stderr, err, "error");
+    run->status = status;
+    return false;
+}
+
+/* Refuse an output name we cannot write before spending time rendering. */
+static bool
+check_output(const char *path, struct diag *err)
+{
+    enum image_format format = image_format_from_path(path);
+    if (format == IMAGE_FORMAT_UNKNOWN) {
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "cannot tell the format of '%s': use .png, .ppm, .pfm or .exr",
+            path);
+        return false;
+    }
+    if (format == IMAGE_FORMAT_EXR && !image_exr_available()) {
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "'%s': built without OpenEXR; install libopenexr-dev and rebuild to write .exr",
+            path);
+        return false;
+    }
+    return true;
+}
+
+bool
+run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage)
+{
+    *run = (struct run){.stage = stage->name, .start = clock_seconds(), .status = EXIT_OK};
+    struct diag err;
+    switch (cli_parse(argc, argv, &run->opt, stage, stdout, &err)) {
+    case CLI_EXIT:
+        return false;
+    case CLI_ERROR:
+        return stop(run, &err, EXIT_USAGE);
+    case CLI_OK:
+        break;
+    }
+    run->output = cli_output_path(&run->opt, run->default_output, sizeof run->default_output);
+    if (!check_output(run->output, &err)) {
+        return stop(run, &err, EXIT_USAGE);
+    }
+    return true;
+}
+
+/* Say, once per feature, what this stage does not model; under --strict
+ * that is an error.  Returns false when the scene is refused. */
+static bool
+report_unmodelled(const struct run *run, unsigned modelled)
+{
+    struct diag notes[FEAT_COUNT];
+    int n = features_unmodelled(&run->scene, modelled, run->stage, notes, FEAT_COUNT);
+    for (int i = 0; i < n; i++) {
+        diag_print(stderr, &notes[i], run->opt.strict ? "error" : "warning");
+    }
+    return !(run->opt.strict && n > 0);
+}
+
+bool
+run_load_scene(struct run *run, unsigned modelled)
+{
+    struct diag err;
+    if (!scene_load(run->opt.scene_path, &run->scene, &err)) {
+        return stop(run, &err, EXIT_INPUT);
+    }
+    run->scene_loaded = true;
+    if (!report_unmodelled(run, modelled)) {
+        run_free(run);
+        run->status = EXIT_INPUT;
+        return false;
+    }
+    run->rep.seconds_load = clock_seconds() - run->start;
+    return true;
+}
+
+/* -W alone keeps the scene's aspect ratio; -H alone likewise. */
+static void
+image_size(const struct scene *scene, const struct options *opt, int *width, int *height)
+{
+    double aspect = (double)scene->height / scene->width;
+    *width = scene->width;
+    *height = scene->height;
+    if (opt->width && opt->height) {
+        *width = opt->width;
+        *height = opt->height;
+    } else if (opt->width) {
+        *width = opt->width;
+        *height = (int)(opt->width * aspect + 0.5) > 0 ? (int)(opt->width * aspect + 0.5) : 1;
+    } else if (opt->height) {
+        *height = opt->height;
+        *width = (int)(opt->height / aspect + 0.5) > 0 ? (int)(opt->height / aspect + 0.5) : 1;
+    }
+}
+
+struct render_job
+run_job(const struct run *run, const void *ctx)
+{
+    struct render_job job = {
+        .threads = cli_thread_count(&run->opt),
+        .passes = 1,
+        .seed = run->opt.seed,
+        .progress = !run->opt.quiet && isatty(STDERR_FILENO),
+        .ctx = ctx,
+    };
+    image_size(&run->scene, &run->opt, &job.width, &job.height);
+    return job;
+}
+
+bool
+run_check_job(const struct render_job *job, int spp_per_pass, struct diag *err)
+{
+    /* -W or -H alone scales the other side by the scene's aspect ratio,
+     * which can take it past what a scene may ask for. */
+    if (job->width > SCENE_MAX_IMAGE_DIM || job->height > SCENE_MAX_IMAGE_DIM) {
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "the image would be %dx%d pixels (the scene's aspect ratio); each side must be in "
+            "[1, %d]: give both -W and -H",
+            job->width,
+            job->height,
+            SCENE_MAX_IMAGE_DIM);
+        return false;
+    }
+    /* The report counts samples per pixel in an int. */
+    if (spp_per_pass > INT_MAX / job->passes) {
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "%d passes of %d samples per pixel: more than %d samples",
+            job->passes,
+            spp_per_pass,
+            INT_MAX);
+        return false;
+    }
+    return true;
+}
+
+static void
+fill_report(
+    struct run *run,
+    const struct render_job *job,
+    const struct render_result *result,
+    int spp_per_pass)
+{
+    struct report *rep = &run->rep;
+    rep->stage = run->stage;
+    rep->scene = run->opt.scene_path;
+    rep->width = job->width;
+    rep->height = job->height;
+    rep->spp = result->passes_done * spp_per_pass;
+    rep->threads = job->threads;
+    rep->seed = run->opt.seed;
+    rep->seconds_render = result->seconds;
+    rep->seconds_render_cpu = result->cpu_seconds;
+    rep->counts = result->counts;
+    rep->nan_pixels = result->nan_pixels;
+}
+
+/* Write the image and the statistics; returns the exit status. */
+static int
+write_outputs(struct run *run, const struct image *image)
+{
+    struct diag err;
+    if (!image_write(image, run->output, &err)) {
+        diag_print(stderr, &err, "error");
+        return EXIT_OUTPUT;
+    }
+    run->rep.seconds_total = clock_seconds() - run->start;
+    run->rep.peak_rss_bytes = peak_rss_bytes();
+    if (!run->opt.quiet) {
+        report_print(stderr, &run->rep);
+    }
+    if (run->opt.stats_path && !report_write_json(&run->rep, run->opt.stats_path, &err)) {
+        diag_print(stderr, &err, "error");
+        return EXIT_OUTPUT;
+    }
+    return EXIT_OK;
+}
+
+int
+run_render(struct run *run, const struct render_job *job, int spp_per_pass)
+{
+    struct diag err;
+    if (!run_check_job(job, spp_per_pass, &err)) {
+        diag_print(stderr, &err, "error");
+        return EXIT_USAGE;
+    }
+    render_stop_on_interrupt();
+    struct image image = {0};
+    struct render_result result;
+    if (!render_image(job, &image, &result, &err)) {
+        diag_print(stderr, &err, "error");
+        return EXIT_INPUT;
+    }
+    if (result.passes_done == 0) {
+        fprintf(stderr, "interrupted before the image was complete; nothing written\n");
+        image_free(&image);
+        return EXIT_INTERRUPTED;
+    }
+    if (result.interrupted) {
+        fprintf(
+            stderr,
+            "interrupted: writing the image after %d complete passes\n",
+            result.passes_done);
+    }
+    fill_report(run, job, &result, spp_per_pass);
+    int status = write_outputs(run, &image);
+    image_free(&image);
+    return status;
+}
+
+int
+run_fail(struct run *run, const struct diag *err, int status)
+{
+    diag_print(stderr, err, "error");
+    run_free(run);
+    return status;
+}
+
+void
+run_free(struct run *run)
+{
+    if (run->scene_loaded) {
+        scene_free(&run->scene);
+        run->scene_loaded = false;
+    }
+}

@@ -1,0 +1,76 @@
+/*
+ * run.h - what every stage's main() does around its render, in one place:
+ * parse the command line, refuse a bad output before any work, load the
+ * scene and say what the stage does not model, run the tile driver, write
+ * the image and the statistics, and choose the exit status (CONTRACT.md).
+ *
+ * This is main()'s plumbing, shared by the seven stages: it prints the
+ * diagnostics (stderr) but never exits.  Every step returns false (or a
+ * status), and main() returns the status, so a stage's main.c holds only
+ * its options and its render call.
+ */
+#ifndef RUN_H
+#define RUN_H
+
+#include <stdbool.h>
+
+#include "cli.h"
+#include "diag.h"
+#include "driver.h"
+#include "scene.h"
+#include "stats.h"
+
+/* The exit statuses of CONTRACT.md. */
+enum exit_status {
+    EXIT_OK = 0,
+    EXIT_INPUT = 1, /* invalid scene or input file */
+    EXIT_USAGE = 2, /* bad command line */
+    EXIT_OUTPUT = 3, /* an output could not be written */
+    EXIT_INTERRUPTED = 130, /* the shell's code for death by SIGINT */
+};
+
+/* One run of `render`, from the command line to the written outputs. */
+struct run {
+    const char *stage; /* STAGE_NAME, e.g. "05_bvh" */
+    struct options opt;
+    const char *output; /* the image: -o, or <scene name>.png */
+    char default_output[1024];
+    double start; /* clock_seconds() when the run began */
+    struct scene scene; /* loaded by run_load_scene */
+    bool scene_loaded;
+    struct report rep; /* what --stats and the summary report */
+    int status; /* the exit status once a step has returned false */
+};
+
+/* Parse the command line and check the outputs, before any work.  False:
+ * main() returns run->status (EXIT_OK after --help or --version). */
+bool run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage);
+
+/* Load the scene and warn, once per feature, about what `modelled` (the
+ * stage's RENDER_FEATURES) lacks; under --strict that refuses the scene.
+ * False: main() returns run->status. */
+bool run_load_scene(struct run *run, unsigned modelled);
+
+/* The job every stage starts from: the image size (the scene's, or -W/-H
+ * keeping its aspect ratio), the threads, the seed, the progress bar, one
+ * pass over ctx.  The stage sets its pixel function (a progressive stage
+ * also its passes and its time budget). */
+struct render_job run_job(const struct run *run, const void *ctx);
+
+/* Check that the job can be run at all before anything is allocated for
+ * it.  False: err says why (exit EXIT_USAGE). */
+bool run_check_job(const struct render_job *job, int spp_per_pass, struct diag *err);
+
+/* Render the job (Ctrl-C stops it after the passes completed so far) and
+ * write the image and the statistics; spp_per_pass is the camera samples
+ * per pixel of one pass.  Returns the exit status. */
+int run_render(struct run *run, const struct render_job *job, int spp_per_pass);
+
+/* Print err, release the run's resources, and return status: the way out
+ * of main() for a check of the stage's own. */
+int run_fail(struct run *run, const struct diag *err, int status);
+
+/* Release what the run holds (the scene). */
+void run_free(struct run *run);
+
+#endif /* RUN_H */
