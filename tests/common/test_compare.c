@@ -370,6 +370,9 @@ TEST(one_render_and_its_variance_image)
     make_render(&ref, 77, 2, 1, 1.03, &a);
     CHECK(write_image(&a, "a.pfm"));
     CHECK_MSG(compare(args, out) == 1 && strstr(out, "x 32-47, y 16-31"), "%s", out);
+    var.rgb[100] = -1; /* not a variance: bad input */
+    CHECK(write_image(&var, "var.pfm"));
+    CHECK_MSG(compare(args, out) == 2 && strstr(out, "finite and >= 0"), "%s", out);
     image_free(&a);
     image_free(&ref);
     image_free(&var);

@@ -69,6 +69,9 @@ int compare_block_channel(const struct metrics_block *b);
  * darker than the reference (green), 6.1 standard errors". */
 void compare_describe_block(char *buf, size_t cap, const struct metrics_block *b);
 
+/* What to do next about failing blocks: render again with more samples. */
+extern const char compare_bias_hint[];
+
 /* "render R G B, reference R G B": the means of both images, per channel. */
 void compare_format_means(char *buf, size_t cap, const struct metrics *m, const char *separator);
 

@@ -317,6 +317,20 @@ load_inputs(struct comparison *c, struct diag *err)
                 c->render.height);
             ok = false;
         }
+        size_t n = (size_t)c->variance.width * (size_t)c->variance.height * 3;
+        for (size_t i = 0; ok && i < n; i++) {
+            if (!(c->variance.rgb[i] >= 0) || !isfinite(c->variance.rgb[i])) {
+                diag_set(
+                    err,
+                    c->variance_path,
+                    0,
+                    0,
+                    "a variance must be finite and >= 0, found %g at pixel %zu",
+                    c->variance.rgb[i],
+                    i / 3);
+                ok = false;
+            }
+        }
         c->noise = NOISE_VARIANCE;
     }
     return ok;
@@ -513,6 +527,29 @@ decide(struct comparison *c)
     }
 }
 
+/* text after label, wrapped at 80 columns, continuation lines indented. */
+static void
+print_wrapped(const char *label, const char *text)
+{
+    size_t indent = strlen(label), column = indent;
+    fputs(label, stdout);
+    while (*text) {
+        size_t word = strcspn(text, " ");
+        if (column > indent && column + 1 + word > 80) {
+            printf("\n%*s", (int)indent, "");
+            column = indent;
+        } else if (column > indent) {
+            putchar(' ');
+            column++;
+        }
+        printf("%.*s", (int)word, text);
+        column += word;
+        text += word;
+        text += strspn(text, " ");
+    }
+    putchar('\n');
+}
+
 static void
 print_text(const struct comparison *c)
 {
@@ -588,6 +625,9 @@ print_text(const struct comparison *c)
     }
     if (c->n_failing > MAX_LISTED) {
         printf("           ... and %d more (see the error map)\n", c->n_failing - MAX_LISTED);
+    }
+    if (c->n_failing) {
+        print_wrapped("hint       ", compare_bias_hint);
     }
 }
 
