@@ -24,13 +24,7 @@ world_make(const struct scene *s)
 bool
 intersect_sphere(const struct sphere *sphere, ray r, real t_max, real *t)
 {
-    /* LAB 01: solve the sphere quadratic without cancellation: the nearest t in
-     * (0, t_max) (docs/stages/01_raycast.md#lab)
-     * stub: (void)sphere;
-     * (void)r;
-     * (void)t_max;
-     * (void)t;
-     * return false; */
+    /* LAB 01: ray-sphere intersection */
     vec3 f = vec3_sub(r.o, sphere->center);
     real b = -vec3_dot(f, r.d);
     vec3 perpendicular = vec3_madd(f, r.d, b);
@@ -68,16 +62,7 @@ intersect_sphere(const struct sphere *sphere, ray r, real t_max, real *t)
 static bool
 solve_planar(vec3 p0, vec3 e1, vec3 e2, ray r, real *t, real *u, real *v)
 {
-    /* LAB 01: Moller-Trumbore: solve o + t d = p0 + u e1 + v e2 by Cramer's rule
-     * (docs/stages/01_raycast.md#lab)
-     * stub: (void)p0;
-     * (void)e1;
-     * (void)e2;
-     * (void)r;
-     * (void)t;
-     * (void)u;
-     * (void)v;
-     * return false; */
+    /* LAB 01: ray-triangle intersection */
     vec3 pvec = vec3_cross(r.d, e2);
     real det = vec3_dot(e1, pvec);
     if (det == 0) {

@@ -7,12 +7,7 @@
 vec3
 point_irradiance(const struct hit *h, vec3 from, vec3 intensity)
 {
-    /* LAB 01: Lambert: the irradiance I cos(theta) / r^2 from a point light
-     * (docs/stages/01_raycast.md#lab)
-     * stub: (void)h;
-     * (void)from;
-     * (void)intensity;
-     * return vec3_splat(0); */
+    /* LAB 01: irradiance from a point light */
     vec3 to_light = vec3_sub(from, h->p);
     real dist2 = vec3_length2(to_light);
     real cos_theta = vec3_dot(h->n, to_light);

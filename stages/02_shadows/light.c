@@ -7,12 +7,7 @@
 vec3
 point_irradiance(const struct hit *h, vec3 from, vec3 intensity)
 {
-    /* LAB 01: Lambert: the irradiance I cos(theta) / r^2 from a point light
-     * (docs/stages/01_raycast.md#lab)
-     * stub: (void)h;
-     * (void)from;
-     * (void)intensity;
-     * return vec3_splat(0); */
+    /* LAB 01: irradiance from a point light */
     vec3 to_light = vec3_sub(from, h->p);
     real dist2 = vec3_length2(to_light);
     real cos_theta = vec3_dot(h->n, to_light);
@@ -40,13 +35,7 @@ area_light_intensity(const struct area_light *light, vec3 p)
 bool
 visible(const struct world *w, const struct hit *h, vec3 to, struct stats *st)
 {
-    /* LAB 02: cast one shadow ray from h towards `to`: is anything in between?
-     * (docs/stages/02_shadows.md#lab)
-     * stub: (void)w;
-     * (void)h;
-     * (void)to;
-     * (void)st;
-     * return true; */
+    /* LAB 02: shadow ray */
     real t_max;
     ray shadow = spawn_ray_to(h, to, &t_max);
     st->rays_shadow++;

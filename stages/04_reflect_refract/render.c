@@ -79,17 +79,7 @@ shade_glass(
     struct rng *rng,
     struct stats *st)
 {
-    /* LAB 04: smooth glass: trace the reflected and the refracted ray, weighted by F
-     * and 1 - F; enter or leave by the side the ray comes from
-     * (docs/stages/04_reflect_refract.md#lab)
-     * stub: (void)renderer;
-     * (void)m;
-     * (void)r;
-     * (void)h;
-     * (void)depth;
-     * (void)rng;
-     * (void)st;
-     * return vec3_splat(0); */
+    /* LAB 04: glass */
     vec3 n = vec3_dot(r.d, h->n) < 0 ? h->n : h->ng;
     real eta = h->front_face ? 1 / m->ior : m->ior;
     real f = fresnel_dielectric(-vec3_dot(r.d, n), eta);

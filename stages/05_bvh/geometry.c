@@ -68,13 +68,7 @@ world_free(struct world *w)
 bool
 intersect_sphere(const struct sphere *sphere, ray r, real t_max, real *t)
 {
-    /* LAB 01: solve the sphere quadratic without cancellation: the nearest t in
-     * (0, t_max) (docs/stages/01_raycast.md#lab)
-     * stub: (void)sphere;
-     * (void)r;
-     * (void)t_max;
-     * (void)t;
-     * return false; */
+    /* LAB 01: ray-sphere intersection */
     vec3 f = vec3_sub(r.o, sphere->center);
     real b = -vec3_dot(f, r.d);
     vec3 perpendicular = vec3_madd(f, r.d, b);
@@ -112,16 +106,7 @@ intersect_sphere(const struct sphere *sphere, ray r, real t_max, real *t)
 static bool
 solve_planar(vec3 p0, vec3 e1, vec3 e2, ray r, real *t, real *u, real *v)
 {
-    /* LAB 01: Moller-Trumbore: solve o + t d = p0 + u e1 + v e2 by Cramer's rule
-     * (docs/stages/01_raycast.md#lab)
-     * stub: (void)p0;
-     * (void)e1;
-     * (void)e2;
-     * (void)r;
-     * (void)t;
-     * (void)u;
-     * (void)v;
-     * return false; */
+    /* LAB 01: ray-triangle intersection */
     vec3 pvec = vec3_cross(r.d, e2);
     real det = vec3_dot(e1, pvec);
     if (det == 0) {
@@ -335,13 +320,7 @@ world_intersect(const struct world *w, ray r, real t_max, struct hit *out, struc
 bool
 world_occluded(const struct world *w, ray r, real t_max, struct stats *st)
 {
-    /* LAB 02: an any-hit query: stop at the first primitive hit with t in (0, t_max)
-     * (docs/stages/02_shadows.md#lab)
-     * stub: (void)w;
-     * (void)r;
-     * (void)t_max;
-     * (void)st;
-     * return false; */
+    /* LAB 02: any-hit query */
     if (w->use_bvh) {
         return bvh_occluded(&w->bvh, w, r, t_max, st);
     }
@@ -360,9 +339,7 @@ world_occluded(const struct world *w, ray r, real t_max, struct stats *st)
 ray
 spawn_ray(const struct hit *h, vec3 d)
 {
-    /* LAB 02: push the origin off the surface by the hit's error bound, to the side
-     * d points to (docs/stages/02_shadows.md#lab)
-     * stub: return (ray){h->p, d}; */
+    /* LAB 02: ray origin off the surface */
     /* Twice the bound: the new origin is clear of the surface even after
      * the offset itself is rounded. */
     real offset = 2 * h->error;

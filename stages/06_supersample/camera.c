@@ -42,11 +42,7 @@ camera_make(const struct camera_desc *desc, int width, int height)
 ray
 camera_ray(const struct camera *cam, real film_x, real film_y)
 {
-    /* LAB 01: the ray through film position (film_x, film_y): map the film to the image
-     * plane at distance 1 using half_width and half_height (docs/stages/01_raycast.md#lab)
-     * stub: (void)film_x;
-     * (void)film_y;
-     * return (ray){cam->origin, cam->forward}; */
+    /* LAB 01: camera ray */
     /* Film to the image plane at distance 1: x from -half_width (left) to
      * +half_width (right), y from +half_height (top) to -half_height. */
     real x = (2 * film_x / (real)cam->width - 1) * cam->half_width;

@@ -1,32 +1,7 @@
 /* optics.c - reflection, refraction and the dielectric Fresnel equations. */
 #include "optics.h"
 
-/* LAB 04: mirror reflection, Snell refraction with total internal reflection, and
- * the exact dielectric Fresnel reflectance (docs/stages/04_reflect_refract.md#lab)
- * stub: vec3
- * reflect(vec3 d, vec3 n)
- * {
- *     (void)n;
- *     return d;
- * }
- *
- * bool
- * refract(vec3 d, vec3 n, real eta, vec3 *out)
- * {
- *     (void)d;
- *     (void)n;
- *     (void)eta;
- *     (void)out;
- *     return false;
- * }
- *
- * real
- * fresnel_dielectric(real cos_i, real eta)
- * {
- *     (void)cos_i;
- *     (void)eta;
- *     return 1;
- * } */
+/* LAB 04: reflection, refraction, Fresnel */
 vec3
 reflect(vec3 d, vec3 n)
 {

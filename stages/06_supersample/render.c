@@ -79,17 +79,7 @@ shade_glass(
     struct rng *rng,
     struct stats *st)
 {
-    /* LAB 04: smooth glass: trace the reflected and the refracted ray, weighted by F
-     * and 1 - F; enter or leave by the side the ray comes from
-     * (docs/stages/04_reflect_refract.md#lab)
-     * stub: (void)renderer;
-     * (void)m;
-     * (void)r;
-     * (void)h;
-     * (void)depth;
-     * (void)rng;
-     * (void)st;
-     * return vec3_splat(0); */
+    /* LAB 04: glass */
     vec3 n = vec3_dot(r.d, h->n) < 0 ? h->n : h->ng;
     real eta = h->front_face ? 1 / m->ior : m->ior;
     real f = fresnel_dielectric(-vec3_dot(r.d, n), eta);
@@ -152,14 +142,7 @@ trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct
 static void
 sample_position(int pattern, int i, int n, struct rng *rng, real *dx, real *dy)
 {
-    /* LAB 06: place sample i of n in cell i of a k x m grid over the pixel: its centre
-     * (grid) or a uniform point in it (jitter) (docs/stages/06_supersample.md#lab)
-     * stub: (void)pattern;
-     * (void)i;
-     * (void)n;
-     * (void)rng;
-     * *dx = (real)0.5;
-     * *dy = (real)0.5; */
+    /* LAB 06: sample position */
     int k = strata_columns(n);
     int m = n / k;
     real u = pattern == AA_GRID ? (real)0.5 : rng_uniform(rng);
@@ -210,12 +193,7 @@ sum_samples(
 static vec3
 adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng, struct stats *st)
 {
-    /* LAB 06: a few probe samples; all spp only where their contrast exceeds the
-     * threshold (docs/stages/06_supersample.md#lab)
-     * stub: real lo = REAL_MAX;
-     * real hi = -REAL_MAX;
-     * vec3 sum = sum_samples(renderer, px, py, AA_JITTER, renderer->spp, rng, st, &lo, &hi);
-     * return vec3_scale(sum, 1 / (real)renderer->spp); */
+    /* LAB 06: adaptive sampling */
     real lo = REAL_MAX;
     real hi = -REAL_MAX;
     int probes = renderer->spp < AA_PROBES ? renderer->spp : AA_PROBES;

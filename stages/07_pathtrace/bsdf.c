@@ -7,34 +7,7 @@
 
 #include "optics.h"
 
-/* LAB 07: sample a cosine-weighted bounce, a mirror bounce, or glass reflection or
- * refraction with the Fresnel probability; return the weight f cos / pdf
- * (docs/stages/07_pathtrace.md#lab)
- * stub: vec3
- * sample_cosine_hemisphere(real u, real v)
- * {
- *     (void)u;
- *     (void)v;
- *     return (vec3){0, 0, 1};
- * }
- *
- * bool
- * sample_bsdf(
- *     const struct material *m,
- *     vec3 albedo,
- *     const struct hit *h,
- *     vec3 d,
- *     struct rng *rng,
- *     struct bsdf_sample *out)
- * {
- *     (void)m;
- *     (void)albedo;
- *     (void)h;
- *     (void)d;
- *     (void)rng;
- *     (void)out;
- *     return false;
- * } */
+/* LAB 07: BSDF sampling */
 vec3
 sample_cosine_hemisphere(real u, real v)
 {

@@ -64,16 +64,7 @@ struct build_ref {
     int prim;
 };
 
-/* LAB 05: build the tree: centroids, the widest axis, the median split, leaves of
- * at most BVH_MAX_LEAF primitives, boxes rounded outward (docs/stages/05_bvh.md#lab)
- * stub: bool
- * bvh_build(struct bvh *bvh, const struct world *w, struct diag *err)
- * {
- *     (void)w;
- *     (void)err;
- *     *bvh = (struct bvh){.nodes = NULL};
- *     return true;
- * } */
+/* LAB 05: BVH build */
 /* --- primitive bounds ------------------------------------------------------ */
 
 static struct box
@@ -482,44 +473,7 @@ bvh_free(struct bvh *bvh)
     *bvh = (struct bvh){.nodes = NULL};
 }
 
-/* LAB 05: traverse the tree: slab tests, the nearer child first, the farther one
- * pushed with its entry distance, boxes beyond the closest hit skipped
- * (docs/stages/05_bvh.md#lab)
- * stub: bool
- * bvh_intersect(
- *     const struct bvh *bvh,
- *     const struct world *w,
- *     ray r,
- *     real t_max,
- *     struct hit *out,
- *     struct stats *st)
- * {
- *     (void)bvh;
- *     bool found = false;
- *     for (int prim = 0; prim < w->n_prims; prim++) {
- *         if (intersect_prim(w->scene, prim, r, t_max, out)) {
- *             t_max = out->t;
- *             found = true;
- *         }
- *     }
- *     st->prim_tests += (uint64_t)w->n_prims;
- *     return found;
- * }
- *
- * bool
- * bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, struct stats *st)
- * {
- *     (void)bvh;
- *     struct hit h;
- *     for (int prim = 0; prim < w->n_prims; prim++) {
- *         if (intersect_prim(w->scene, prim, r, t_max, &h)) {
- *             st->prim_tests += (uint64_t)prim + 1;
- *             return true;
- *         }
- *     }
- *     st->prim_tests += (uint64_t)w->n_prims;
- *     return false;
- * } */
+/* LAB 05: BVH traversal */
 /* --- traversal ------------------------------------------------------------ */
 
 /* A ray prepared for slab tests. */

@@ -10,12 +10,7 @@
 vec3
 point_irradiance(const struct hit *h, vec3 from, vec3 intensity)
 {
-    /* LAB 01: Lambert: the irradiance I cos(theta) / r^2 from a point light
-     * (docs/stages/01_raycast.md#lab)
-     * stub: (void)h;
-     * (void)from;
-     * (void)intensity;
-     * return vec3_splat(0); */
+    /* LAB 01: irradiance from a point light */
     vec3 to_light = vec3_sub(from, h->p);
     real dist2 = vec3_length2(to_light);
     real cos_theta = vec3_dot(h->n, to_light);
@@ -30,11 +25,7 @@ point_irradiance(const struct hit *h, vec3 from, vec3 intensity)
 vec3
 sample_area_light(const struct area_light *light, real u, real v)
 {
-    /* LAB 03: the point of the light at (u, v) in [0,1)^2, uniform over its area
-     * (docs/stages/03_soft_shadows.md#lab)
-     * stub: (void)u;
-     * (void)v;
-     * return area_light_center(light); */
+    /* LAB 03: point on an area light */
     return vec3_madd(vec3_madd(light->corner, light->edge1, u), light->edge2, v);
     /* END LAB */
 }
@@ -42,13 +33,7 @@ sample_area_light(const struct area_light *light, real u, real v)
 bool
 visible(const struct world *w, const struct hit *h, vec3 to, struct stats *st)
 {
-    /* LAB 02: cast one shadow ray from h towards `to`: is anything in between?
-     * (docs/stages/02_shadows.md#lab)
-     * stub: (void)w;
-     * (void)h;
-     * (void)to;
-     * (void)st;
-     * return true; */
+    /* LAB 02: shadow ray */
     real t_max;
     ray shadow = spawn_ray_to(h, to, &t_max);
     st->rays_shadow++;
@@ -64,26 +49,7 @@ transmittance(const struct world *w, const struct hit *h, vec3 to, struct stats 
     return vec3_splat(visible(w, h, to, st) ? 1 : 0);
 }
 
-/* LAB 03: estimate an area light's irradiance with stratified shadow rays
- * (L cos cos' / r^2 * A per sample) and the adaptive penumbra scheme
- * (docs/stages/03_soft_shadows.md#lab)
- * stub: static vec3
- * area_light_irradiance(
- *     const struct world *w,
- *     const struct hit *h,
- *     const struct area_light *light,
- *     const struct shadow_sampling *sampling,
- *     struct rng *rng,
- *     struct stats *st)
- * {
- *     (void)w;
- *     (void)h;
- *     (void)light;
- *     (void)sampling;
- *     (void)rng;
- *     (void)st;
- *     return vec3_splat(0);
- * } */
+/* LAB 03: area light irradiance */
 /* One sample of the area light's irradiance at h from its point y:
  * L cos(theta) cos(theta') / r^2 * A (the estimator of E = integral over the
  * light of L cos cos' / r^2 dA, with y drawn with density 1/A), zero when

@@ -76,10 +76,7 @@ direct_light(
 static vec3
 emitted(const struct renderer *renderer, const struct hit *h, const struct path *path)
 {
-    /* LAB 07: count a light's emission only where next-event estimation could not
-     * have found it: after the camera ray or a specular bounce (docs/stages/07_pathtrace.md#lab)
-     * stub: (void)path;
-     * return area_light_emitted(&renderer->scene->area_lights[h->light], h->front_face); */
+    /* LAB 07: emission */
     bool counted_by_nee = renderer->nee && !path->specular;
     if (counted_by_nee) {
         return vec3_splat(0);
@@ -134,10 +131,7 @@ shade(
 static void
 russian_roulette(struct path *path, struct rng *rng)
 {
-    /* LAB 07: past RR_MIN_DEPTH, survive with probability q from the throughput and
-     * divide the survivor's throughput by q (docs/stages/07_pathtrace.md#lab)
-     * stub: (void)path;
-     * (void)rng; */
+    /* LAB 07: Russian roulette */
     if (path->depth < RR_MIN_DEPTH) {
         return;
     }
@@ -179,14 +173,7 @@ trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct
 static void
 sample_position(int pattern, int i, int n, struct rng *rng, real *dx, real *dy)
 {
-    /* LAB 06: place sample i of n in cell i of a k x m grid over the pixel: its centre
-     * (grid) or a uniform point in it (jitter) (docs/stages/06_supersample.md#lab)
-     * stub: (void)pattern;
-     * (void)i;
-     * (void)n;
-     * (void)rng;
-     * *dx = (real)0.5;
-     * *dy = (real)0.5; */
+    /* LAB 06: sample position */
     int k = strata_columns(n);
     int m = n / k;
     real u = pattern == AA_GRID ? (real)0.5 : rng_uniform(rng);
@@ -283,13 +270,7 @@ adaptive_pixel(
     struct rng *rng,
     struct stats *st)
 {
-    /* LAB 06: a few probe samples; all spp only where their contrast exceeds the
-     * threshold (docs/stages/06_supersample.md#lab)
-     * stub: real lo = REAL_MAX;
-     * real hi = -REAL_MAX;
-     * int n = renderer->spp_pass;
-     * vec3 sum = sum_samples(renderer, px, py, AA_JITTER, first, n, rng, st, &lo, &hi);
-     * return vec3_scale(sum, 1 / (real)n); */
+    /* LAB 06: adaptive sampling */
     real lo = REAL_MAX;
     real hi = -REAL_MAX;
     int n = renderer->spp_pass;

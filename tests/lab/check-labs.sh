@@ -197,10 +197,10 @@ find_leaks() {
     fl_dir=$2
     fl_tmp=$3
     fl_nn=${fl_stage%%_*}
-    (cd "$root" && awk -v mode=inside -v lab="$fl_nn" -f "$LAB_DIR/markers.awk" \
-        stages/"$fl_stage"/*.[ch]) >"$fl_tmp/inside"
-    (cd "$root" && awk -v mode=outside -v lab="$fl_nn" -f "$LAB_DIR/markers.awk" \
-        stages/"$fl_stage"/*.[ch]) | cut -f 3- >"$fl_tmp/outside"
+    (cd "$root" && awk -v mode=inside -v lab="$fl_nn" -v stubs="$LAB_DIR/stubs" \
+        -f "$LAB_DIR/markers.awk" stages/"$fl_stage"/*.[ch]) >"$fl_tmp/inside"
+    (cd "$root" && awk -v mode=outside -v lab="$fl_nn" -v stubs="$LAB_DIR/stubs" \
+        -f "$LAB_DIR/markers.awk" stages/"$fl_stage"/*.[ch]) | cut -f 3- >"$fl_tmp/outside"
     : >"$fl_tmp/known"
     : >"$fl_tmp/targets"
     (cd "$fl_dir" && find . -path ./build -prune -o -type f -print | sed 's|^\./||' | LC_ALL=C sort) |

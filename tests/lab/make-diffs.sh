@@ -80,7 +80,8 @@ stage_diff() {
 # table_row PREV CUR - one row of the table.
 table_row() {
     tr_nn=${2%%_*}
-    (cd "$root/stages" && awk -v mode=regions -f "$LAB_DIR/markers.awk" "$2"/*.[ch]) >"$tmp/regions" ||
+    (cd "$root/stages" && awk -v mode=regions -v stubs="$LAB_DIR/stubs" -f "$LAB_DIR/markers.awk" \
+        "$2"/*.[ch]) >"$tmp/regions" ||
         die "stages/$2: bad LAB markers (see above)"
     set -- "$1" "$2" $(awk -v lab="$tr_nn" -f "$LAB_DIR/diffstat.awk" \
         pass=regions "$tmp/regions" pass=diff "$docs/diffs/$2.diff")

@@ -90,7 +90,8 @@ write_stage() {
         [ -f "$ws_f" ] || continue
         ws_name=$(basename "$ws_f")
         (cd "$root" && awk -v mode=handout -v lab="$nn" -v stage="$nn" \
-            -v docref="docs/stages/$stage.md" -f "$LAB_DIR/markers.awk" "stages/$stage/$ws_name") >"$ws_f" ||
+            -v docref="docs/stages/$stage.md" -v stubs="$LAB_DIR/stubs" -f "$LAB_DIR/markers.awk" \
+            "stages/$stage/$ws_name") >"$ws_f" ||
             die "stages/$stage/$ws_name: bad LAB markers (see above)"
     done
 }
@@ -164,7 +165,8 @@ page_title() {
 
 # The places to write code, from the stubbed files.
 todo_list() {
-    (cd "$tmp" && awk -v mode=regions -f "$LAB_DIR/markers.awk" stages/"$stage"/*.[ch]) |
+    (cd "$tmp" && awk -v mode=regions -v stubs="$LAB_DIR/stubs" -f "$LAB_DIR/markers.awk" \
+        stages/"$stage"/*.[ch]) |
         awk -F '\t' -v nn="$nn" '$4 == nn { printf "- `%s`, line %d: %s\n", $1, $2, $5 }'
 }
 

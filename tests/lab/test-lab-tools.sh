@@ -89,7 +89,76 @@ test_markers() {
     else
         fail markers/outside "$(cat "$T/outside")"
     fi
+    # The stub store: sample.c.in with its LAB 02 marker comments replaced
+    # by the one-line markers of stubs/02_b.stubs (in order) must give the
+    # same handout.
+    mkdir -p "$T/02_b"
+    awk 'NR == FNR { if ($0 ~ /^sample\.c: /) name[++n] = substr($0, 11); next }
+        skip { skip = index($0, "*/") == 0; next }
+        /^[ \t]*\/\* LAB 02:/ {
+            match($0, /^[ \t]*/)
+            print substr($0, 1, RLENGTH) name[++i]
+            skip = index($0, "*/") == 0
+            next
+        }
+        { print }' stubs/02_b.stubs sample.c.in >"$T/02_b/sample.c"
     cd "$T"
+    markers -v mode=handout -v lab=02 -v stage=02 -v docref=docs/stages/02_b.md -v stubs="$FIX/stubs" \
+        02_b/sample.c >"$T/s02" 2>&1 || true
+    same markers/store-handout "$FIX/sample.handout-02.c" "$T/s02"
+    check markers/store-lint-ok markers -v mode=lint -v stubs="$FIX/stubs" 02_b/sample.c
+    markers -v mode=outside -v lab=02 -v stubs="$FIX/stubs" 02_b/sample.c | cut -f 3 >"$T/s-outside"
+    if grep -q '^return true;$' "$T/s-outside" && ! grep -q 'shadow_rays_of' "$T/s-outside"; then
+        ok markers/store-outside
+    else
+        fail markers/store-outside "$(cat "$T/s-outside")"
+    fi
+    cd "$T"
+}
+
+# bad_store NAME EXPECTED-MESSAGE - markers.awk lint of 02_b/bad.c (stdin)
+# with the store 02_b.stubs ($T/stubs, written by the caller) must fail.
+bad_store() {
+    mkdir -p "$T/02_b"
+    cat >"$T/02_b/bad.c"
+    bs_status=0
+    (cd "$T" && markers -v mode=lint -v stubs=stubs 02_b/bad.c) >"$T/bad.out" 2>&1 || bs_status=$?
+    if [ "$bs_status" -eq 1 ] && grep -q "$2" "$T/bad.out"; then
+        ok "markers/error/$1"
+    else
+        fail "markers/error/$1" "exit $bs_status, expected '$2':" "$(cat "$T/bad.out")"
+    fi
+}
+
+test_store_errors() {
+    mkdir -p "$T/stubs"
+    printf '%s\n' 'bad.c: /* LAB 02: one */' '/* LAB 02: the hint' ' * stub: return 0; */' >"$T/stubs/02_b.stubs"
+    bad_store store-inline-marker 'a marker over several lines' <<'EOF'
+/* LAB 02: one */
+int x;
+/* END LAB */
+/* LAB 01: an earlier lab
+ * stub: return 1; */
+int y;
+/* END LAB */
+EOF
+    bad_store store-no-entry "no entry 'bad.c: /\\* LAB 02: two \\*/'" <<'EOF'
+/* LAB 02: one */
+int x;
+/* END LAB */
+/* LAB 02: two */
+int y;
+/* END LAB */
+EOF
+    bad_store store-unused-entry 'no marker in 02_b/bad.c uses this entry' <<'EOF'
+int x;
+EOF
+    printf '%s\n' 'bad.c: /* LAB 02: one */' 'int x;' >"$T/stubs/02_b.stubs"
+    bad_store store-bad-entry "starts with its marker comment" <<'EOF'
+/* LAB 02: one */
+int x;
+/* END LAB */
+EOF
 }
 
 # bad NAME EXPECTED-MESSAGE - markers.awk lint on stdin must fail with it.
@@ -476,6 +545,7 @@ test_help() {
 test_markers
 cd "$T"
 test_marker_errors
+test_store_errors
 test_labdoc
 test_leaks
 if command -v git >/dev/null 2>&1; then
