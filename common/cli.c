@@ -57,13 +57,67 @@ static const struct shared_option shared_options[] = {
 
 #define N_SHARED ((int)(sizeof shared_options / sizeof shared_options[0]))
 
+static const char *
+skip_digits(const char *p, int *count)
+{
+    while (*p >= '0' && *p <= '9') {
+        p++;
+        ++*count;
+    }
+    return p;
+}
+
+/* The one syntax of every number on the command line: an optional sign,
+ * decimal digits and, for a real, a fraction and an exponent.  No blanks,
+ * no hexadecimal, no "inf" or "nan", which strtoll and strtod alone would
+ * also take. */
 static bool
-parse_long(const char *text, long long min, long long max, long long *out)
+is_decimal(const char *text, bool whole)
+{
+    const char *p = text + (*text == '+' || *text == '-');
+    int digits = 0;
+    p = skip_digits(p, &digits);
+    if (!whole && *p == '.') {
+        p = skip_digits(p + 1, &digits);
+    }
+    if (digits == 0) {
+        return false;
+    }
+    if (!whole && (*p == 'e' || *p == 'E')) {
+        p += 1 + (p[1] == '+' || p[1] == '-');
+        int exponent_digits = 0;
+        p = skip_digits(p, &exponent_digits);
+        if (exponent_digits == 0) {
+            return false;
+        }
+    }
+    return *p == '\0';
+}
+
+/* A whole number in [min, max]; the message gives the range. */
+static bool
+parse_whole(
+    const char *name,
+    const char *text,
+    long long min,
+    long long max,
+    long long *out,
+    struct diag *err)
 {
     char *end;
     errno = 0;
-    long long v = strtoll(text, &end, 10);
-    if (end == text || *end != '\0' || errno == ERANGE || v < min || v > max) {
+    long long v = is_decimal(text, true) ? strtoll(text, &end, 10) : 0;
+    if (!is_decimal(text, true) || errno == ERANGE || v < min || v > max) {
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "--%s expects a whole number in [%lld, %lld], got '%s'",
+            name,
+            min,
+            max,
+            text);
         return false;
     }
     *out = v;
@@ -74,17 +128,7 @@ static bool
 parse_int_in(const char *name, const char *text, double min, double max, int *out, struct diag *err)
 {
     long long v;
-    if (!parse_long(text, (long long)min, (long long)max, &v)) {
-        diag_set(
-            err,
-            NULL,
-            0,
-            0,
-            "--%s expects a whole number in [%.0f, %.0f], got '%s'",
-            name,
-            min,
-            max,
-            text);
+    if (!parse_whole(name, text, (long long)min, (long long)max, &v, err)) {
         return false;
     }
     *out = (int)v;
@@ -100,10 +144,9 @@ parse_real_in(
     real *out,
     struct diag *err)
 {
-    char *end;
     errno = 0;
-    double v = strtod(text, &end);
-    if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v) || v < min || v > max) {
+    double v = is_decimal(text, false) ? strtod(text, NULL) : NAN;
+    if (!is_decimal(text, false) || errno == ERANGE || !isfinite(v) || v < min || v > max) {
         diag_set(
             err,
             NULL,
@@ -192,6 +235,7 @@ apply_shared(
     struct diag *err)
 {
     long long seed;
+    const long long max_seed = 0x7fffffffffffffffLL;
     switch (id) {
     case ID_OUTPUT:
         opt->output = value;
@@ -205,8 +249,7 @@ apply_shared(
     case ID_THREADS:
         return parse_int_in(name, value, 1, 1024, &opt->threads, err);
     case ID_SEED:
-        if (!parse_long(value, 0, 0x7fffffffffffffffLL, &seed)) {
-            diag_set(err, NULL, 0, 0, "--seed expects a whole number >= 0, got '%s'", value);
+        if (!parse_whole(name, value, 0, max_seed, &seed, err)) {
             return false;
         }
         opt->seed = (uint64_t)seed;

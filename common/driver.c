@@ -44,23 +44,6 @@ render_request_stop(void)
 }
 
 static void
-on_interrupt(int signo)
-{
-    (void)signo;
-    render_request_stop();
-}
-
-void
-render_stop_on_interrupt(void)
-{
-    struct sigaction sa = {0};
-    sa.sa_handler = on_interrupt;
-    sa.sa_flags = SA_RESETHAND; /* a second Ctrl-C terminates as usual */
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-}
-
-static void
 draw_progress(struct pass_state *ps, bool final)
 {
     const struct render_job *job = ps->job;

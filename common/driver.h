@@ -64,8 +64,4 @@ bool render_image(
  * call from a signal handler. */
 void render_request_stop(void);
 
-/* Install a SIGINT handler that calls render_request_stop() (a second
- * Ctrl-C kills the program as usual). */
-void render_stop_on_interrupt(void);
-
 #endif /* DRIVER_H */

@@ -200,14 +200,21 @@ check_format(enum image_format format, const char *path, struct diag *err)
 /* The temporary file is renamed over path, so a symbolic link at path is
  * replaced by the new file rather than followed. */
 bool
+image_write_to(const struct image *img, struct atomic_file *af, struct diag *err)
+{
+    enum image_format format = image_format_from_path(af->path);
+    return check_format(format, af->path, err) && encode(img, format, af->f, af->path, err);
+}
+
+bool
 image_write(const struct image *img, const char *path, struct diag *err)
 {
-    enum image_format format = image_format_from_path(path);
     struct atomic_file af;
-    if (!check_format(format, path, err) || !atomic_file_open(&af, path, err)) {
+    if (!check_format(image_format_from_path(path), path, err)
+        || !atomic_file_open(&af, path, err)) {
         return false;
     }
-    if (!encode(img, format, af.f, path, err)) {
+    if (!image_write_to(img, &af, err)) {
         atomic_file_abort(&af);
         return false;
     }

@@ -60,6 +60,13 @@ bool image_exr_available(void);
  * of that name is left untouched) and err says why. */
 bool image_write(const struct image *img, const char *path, struct diag *err);
 
+struct atomic_file;
+
+/* Encode img into af, an atomic file opened for af->path, in the format
+ * af->path names; the caller finishes and publishes it (atomic_file.h), so
+ * several outputs can be put in place together. */
+bool image_write_to(const struct image *img, struct atomic_file *af, struct diag *err);
+
 /* Read a PFM (colour "PF" or greyscale "Pf", either byte order) into a
  * freshly allocated RGB image (greyscale is copied to all three channels). */
 bool image_read_pfm(const char *path, struct image *out, struct diag *err);

@@ -5,10 +5,16 @@
 #include "run.h"
 
 #include <limits.h>
+#include <string.h>
 #include <unistd.h>
 
+#include "atomic_file.h"
 #include "feature_table.h"
 #include "image.h"
+#include "signals.h"
+
+/* The name that makes an output go to standard output (--stats -). */
+#define STDOUT_NAME "-"
 
 /* Print err, remember the exit status, and tell the caller to stop. */
 static bool
@@ -47,6 +53,33 @@ check_output(const char *path, struct diag *err)
     return true;
 }
 
+/* Every file the run will write (an output option added later adds its
+ * line here).  "-" is standard output, which is no file. */
+static void
+collect_outputs(struct run *run)
+{
+    run->outputs[run->n_outputs++] = (struct named_file){"-o", run->output};
+    const char *stats = run->opt.stats_path;
+    if (stats && strcmp(stats, STDOUT_NAME) != 0) {
+        run->outputs[run->n_outputs++] = (struct named_file){"--stats", stats};
+    }
+}
+
+static bool
+check_identities(struct run *run, const struct named_file *inputs, int n_inputs)
+{
+    struct diag err;
+    switch (output_check(run->outputs, run->n_outputs, inputs, n_inputs, &err)) {
+    case OUTPUTS_OK:
+        return true;
+    case OUTPUTS_CLASH:
+        return stop(run, &err, EXIT_USAGE);
+    case OUTPUTS_UNWRITABLE:
+        return stop(run, &err, EXIT_OUTPUT);
+    }
+    return true;
+}
+
 bool
 run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage)
 {
@@ -64,7 +97,9 @@ run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage)
     if (!check_output(run->output, &err)) {
         return stop(run, &err, EXIT_USAGE);
     }
-    return true;
+    collect_outputs(run);
+    const struct named_file scene = {"the scene", run->opt.scene_path};
+    return check_identities(run, &scene, 1);
 }
 
 /* Say, once per feature, what this stage does not model; under --strict
@@ -80,6 +115,20 @@ report_unmodelled(const struct run *run, unsigned modelled)
     return !(run->opt.strict && n > 0);
 }
 
+/* The files the scene read besides itself are inputs too. */
+static bool
+check_mesh_files(struct run *run)
+{
+    const struct scene *s = &run->scene;
+    for (int i = 0; i < s->n_input_files; i++) {
+        const struct named_file mesh = {"the mesh", s->input_files[i]};
+        if (!check_identities(run, &mesh, 1)) {
+            return false;
+        }
+    }
+    return true;
+}
+
 bool
 run_load_scene(struct run *run, unsigned modelled)
 {
@@ -88,6 +137,10 @@ run_load_scene(struct run *run, unsigned modelled)
         return stop(run, &err, EXIT_INPUT);
     }
     run->scene_loaded = true;
+    if (!check_mesh_files(run)) {
+        run_free(run);
+        return false;
+    }
     if (!report_unmodelled(run, modelled)) {
         run_free(run);
         run->status = EXIT_INPUT;
@@ -185,23 +238,82 @@ fill_report(
     rep->nan_pixels = result->nan_pixels;
 }
 
-/* Write the image and the statistics; returns the exit status. */
+/* Give up on the outputs: none is left, under its name or a temporary one. */
+static int
+abandon(struct atomic_file *files, int n, const struct diag *err)
+{
+    diag_print(stderr, err, "error");
+    for (int i = 0; i < n; i++) {
+        atomic_file_abort(&files[i]);
+    }
+    return EXIT_OUTPUT;
+}
+
+/* Put every finished file in place, with the signals held so that the
+ * run ends with all of them or none.  If a rename fails (it should not:
+ * each temporary file is beside its target), those already in place are
+ * removed again. */
+static int
+publish_all(struct atomic_file *files, int n)
+{
+    struct diag err;
+    int status = EXIT_OK;
+    signals_hold();
+    for (int i = 0; i < n; i++) {
+        if (!atomic_file_publish(&files[i], &err)) {
+            for (int j = 0; j < i; j++) {
+                remove(files[j].path);
+            }
+            status = abandon(files + i + 1, n - i - 1, &err);
+            break;
+        }
+    }
+    signals_release();
+    return status;
+}
+
+/* Write the image and the statistics, all or none; returns the exit
+ * status.  "--stats -" goes to standard output once the files are in
+ * place. */
 static int
 write_outputs(struct run *run, const struct image *image)
 {
-    struct diag err;
-    if (!image_write(image, run->output, &err)) {
-        diag_print(stderr, &err, "error");
-        return EXIT_OUTPUT;
-    }
-    run->rep.seconds_total = clock_seconds() - run->start;
     run->rep.peak_rss_bytes = peak_rss_bytes();
+    run->rep.seconds_total = clock_seconds() - run->start;
+    struct atomic_file files[RUN_MAX_OUTPUTS];
+    struct diag err;
+    int n = 0;
+    for (int i = 0; i < run->n_outputs; i++) {
+        const char *path = run->outputs[i].path;
+        if (!atomic_file_open(&files[n], path, &err)) {
+            return abandon(files, n, &err);
+        }
+        n++;
+        if (path == run->output) {
+            if (!image_write_to(image, &files[n - 1], &err)) {
+                return abandon(files, n, &err);
+            }
+        } else {
+            report_write_json_to(files[n - 1].f, &run->rep);
+        }
+        if (!atomic_file_finish(&files[n - 1], &err)) {
+            return abandon(files, n - 1, &err);
+        }
+    }
+    int status = publish_all(files, n);
+    if (status != EXIT_OK) {
+        return status;
+    }
     if (!run->opt.quiet) {
         report_print(stderr, &run->rep);
     }
-    if (run->opt.stats_path && !report_write_json(&run->rep, run->opt.stats_path, &err)) {
-        diag_print(stderr, &err, "error");
-        return EXIT_OUTPUT;
+    const char *stats = run->opt.stats_path;
+    if (stats && strcmp(stats, STDOUT_NAME) == 0) {
+        report_write_json_to(stdout, &run->rep);
+        if (fflush(stdout) != 0 || ferror(stdout)) {
+            fprintf(stderr, "error: --stats -: cannot write to standard output\n");
+            return EXIT_OUTPUT;
+        }
     }
     return EXIT_OK;
 }
@@ -214,7 +326,7 @@ run_render(struct run *run, const struct render_job *job, int spp_per_pass)
         diag_print(stderr, &err, "error");
         return EXIT_USAGE;
     }
-    render_stop_on_interrupt();
+    signals_install();
     struct image image = {0};
     struct render_result result;
     if (!render_image(job, &image, &result, &err)) {

@@ -17,6 +17,7 @@
 #include "cli.h"
 #include "diag.h"
 #include "driver.h"
+#include "output_check.h"
 #include "scene.h"
 #include "stats.h"
 
@@ -29,12 +30,17 @@ enum exit_status {
     EXIT_INTERRUPTED = 130, /* the shell's code for death by SIGINT */
 };
 
+/* The most files a run writes (-o and --stats now). */
+#define RUN_MAX_OUTPUTS 4
+
 /* One run of `render`, from the command line to the written outputs. */
 struct run {
     const char *stage; /* STAGE_NAME, e.g. "05_bvh" */
     struct options opt;
     const char *output; /* the image: -o, or <scene name>.png */
     char default_output[1024];
+    struct named_file outputs[RUN_MAX_OUTPUTS]; /* every file the run writes */
+    int n_outputs;
     double start; /* clock_seconds() when the run began */
     struct scene scene; /* loaded by run_load_scene */
     bool scene_loaded;
@@ -42,13 +48,17 @@ struct run {
     int status; /* the exit status once a step has returned false */
 };
 
-/* Parse the command line and check the outputs, before any work.  False:
- * main() returns run->status (EXIT_OK after --help or --version). */
+/* Parse the command line and check the outputs before any work: a format
+ * this build writes, a directory that exists and takes new files (else
+ * EXIT_OUTPUT), no two outputs one file and none the scene (else
+ * EXIT_USAGE).  False: main() returns run->status (EXIT_OK after --help
+ * or --version). */
 bool run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage);
 
-/* Load the scene and warn, once per feature, about what `modelled` (the
- * stage's RENDER_FEATURES) lacks; under --strict that refuses the scene.
- * False: main() returns run->status. */
+/* Load the scene, check that no output is one of the files it read
+ * (meshes), and warn, once per feature, about what `modelled` (the stage's
+ * RENDER_FEATURES) lacks; under --strict that refuses the scene.  False:
+ * main() returns run->status. */
 bool run_load_scene(struct run *run, unsigned modelled);
 
 /* The job every stage starts from: the image size (the scene's, or -W/-H
@@ -58,12 +68,15 @@ bool run_load_scene(struct run *run, unsigned modelled);
 struct render_job run_job(const struct run *run, const void *ctx);
 
 /* Check that the job can be run at all before anything is allocated for
- * it.  False: err says why (exit EXIT_USAGE). */
+ * it: the one place for limits on the work a command line may ask for.
+ * False: err says why (exit EXIT_USAGE). */
 bool run_check_job(const struct render_job *job, int spp_per_pass, struct diag *err);
 
-/* Render the job (Ctrl-C stops it after the passes completed so far) and
- * write the image and the statistics; spp_per_pass is the camera samples
- * per pixel of one pass.  Returns the exit status. */
+/* Render the job and write the image and the statistics, all of them or
+ * none (each under a temporary name until all are complete); spp_per_pass
+ * is the camera samples per pixel of one pass.  SIGINT, SIGTERM or SIGHUP
+ * stops the render after the passes completed so far (signals.h).
+ * Returns the exit status. */
 int run_render(struct run *run, const struct render_job *job, int spp_per_pass);
 
 /* Print err, release the run's resources, and return status: the way out

@@ -250,6 +250,11 @@ scene_load_string(
     name = name ? name : "<string>";
     snprintf(out->path, sizeof out->path, "%s", name);
     struct parser p = {.src = text ? text : "", .len = text ? len : 0, .line = 1, .col = 1};
+    /* The UTF-8 byte-order mark some editors put at the start of a file is
+     * no part of the scene, and no column. */
+    if (p.len >= 3 && memcmp(p.src, "\xEF\xBB\xBF", 3) == 0) {
+        p.pos = 3;
+    }
     p.name = name;
     p.scene = out;
     p.err = err;
@@ -271,5 +276,9 @@ scene_free(struct scene *s)
     free(s->triangles);
     free(s->point_lights);
     free(s->area_lights);
+    for (int i = 0; i < s->n_input_files; i++) {
+        free(s->input_files[i]);
+    }
+    free(s->input_files);
     *s = (struct scene){.width = 0};
 }

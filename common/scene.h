@@ -135,6 +135,9 @@ struct scene {
     struct area_light *area_lights;
     int n_area_lights;
 
+    char **input_files; /* the files read besides the scene (meshes): no output may be one */
+    int n_input_files;
+
     unsigned features; /* FEATURE_BIT(f) for each feature used */
     struct src_loc feature_loc[FEAT_COUNT]; /* statement where each is first used */
 };

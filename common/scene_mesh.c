@@ -7,6 +7,7 @@
 #include "scene_parser.h"
 
 #include <errno.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "gltf.h"
@@ -189,6 +190,26 @@ load_mesh(
     return true;
 }
 
+/* Remember a file the scene read, so that the run can refuse to write
+ * over it (output_check.h). */
+static bool
+note_input_file(struct parser *p, const struct token *t, const char *path)
+{
+    struct scene *s = p->scene;
+    char **grown = realloc(s->input_files, (size_t)(s->n_input_files + 1) * sizeof *grown);
+    char *copy = malloc(strlen(path) + 1);
+    if (grown) {
+        s->input_files = grown;
+    }
+    if (!grown || !copy) {
+        free(copy);
+        return fail(p, t, "out of memory");
+    }
+    memcpy(copy, path, strlen(path) + 1);
+    s->input_files[s->n_input_files++] = copy;
+    return true;
+}
+
 bool
 build_mesh(struct parser *p, const struct token *kw, struct fields *fs)
 {
@@ -203,7 +224,7 @@ build_mesh(struct parser *p, const struct token *kw, struct fields *fs)
     if (!mesh_path(p, file, name, path) || !load_mesh(p, file, name, path, &mesh)) {
         return false;
     }
-    bool ok = append_mesh(p, file, &mesh, &xf, material);
+    bool ok = append_mesh(p, file, &mesh, &xf, material) && note_input_file(p, file, path);
     gltf_free(&mesh);
     if (ok) {
         use_feature(p, FEAT_MESH, kw);

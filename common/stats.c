@@ -122,8 +122,8 @@ json_real(FILE *f, const char *key, double v)
     fprintf(f, ",\n  \"%s\": %.17g", key, isfinite(v) ? v : 0.0);
 }
 
-static void
-write_json_body(FILE *f, const struct report *r)
+void
+report_write_json_to(FILE *f, const struct report *r)
 {
     const struct stats *c = &r->counts;
     fprintf(f, "{\n  \"stage\": ");
@@ -170,7 +170,7 @@ report_write_json(const struct report *r, const char *path, struct diag *err)
     if (!atomic_file_open(&af, path, err)) {
         return false;
     }
-    write_json_body(af.f, r);
+    report_write_json_to(af.f, r);
     return atomic_file_commit(&af, err);
 }
 

@@ -73,6 +73,10 @@ void report_print(FILE *f, const struct report *r);
  * written through a temporary file renamed into place. */
 bool report_write_json(const struct report *r, const char *path, struct diag *err);
 
+/* The same object written to an open stream (standard output, or an atomic
+ * file the caller finishes); the caller checks the stream for errors. */
+void report_write_json_to(FILE *f, const struct report *r);
+
 /* Seconds on a monotonic clock (an arbitrary origin). */
 double clock_seconds(void);
 

@@ -132,8 +132,49 @@ TEST(errors_say_what_was_expected)
     CHECK(parse(&k, &opt, &err, 2, help) == CLI_EXIT);
 }
 
+/* One number syntax for every option: decimal only, the range in every
+ * message. */
+TEST(one_number_syntax_for_every_option)
+{
+    const char *refused[][2] = {
+        {"--time", "0x10"},
+        {"--time", "inf"},
+        {"--time", " 1"},
+        {"--time", "1e"},
+        {"--samples", "0x10"},
+        {"--samples", "8.0"},
+        {"--samples", " 8"},
+        {"--seed", "0x10"},
+        {"--seed", "-1"},
+        {"-W", "1e3"},
+    };
+    for (size_t i = 0; i < sizeof refused / sizeof refused[0]; i++) {
+        struct knobs k = {0};
+        struct options opt;
+        struct diag err;
+        const char *argv[] = {"render", refused[i][0], refused[i][1], "s"};
+        CHECK_MSG(parse(&k, &opt, &err, 4, argv) == CLI_ERROR, "%s %s", argv[1], argv[2]);
+    }
+    const char *accepted[][2] =
+        {{"--time", "1.5e1"}, {"--time", ".5"}, {"--time", "+2"}, {"--samples", "+8"}};
+    for (size_t i = 0; i < sizeof accepted / sizeof accepted[0]; i++) {
+        struct knobs k = {0};
+        struct options opt;
+        struct diag err;
+        const char *argv[] = {"render", accepted[i][0], accepted[i][1], "s"};
+        CHECK_MSG(parse(&k, &opt, &err, 4, argv) == CLI_OK, "%s %s: %s", argv[1], argv[2], err.msg);
+    }
+    struct knobs k = {0};
+    struct options opt;
+    struct diag err;
+    const char *seed[] = {"render", "--seed", "99999999999999999999", "s"};
+    CHECK(parse(&k, &opt, &err, 4, seed) == CLI_ERROR);
+    CHECK_MSG(strstr(err.msg, "[0, 9223372036854775807]") != NULL, "%s", err.msg);
+}
+
 TEST_MAIN(
     TEST_ENTRY(defaults),
     TEST_ENTRY(shared_options_long_short_and_equals),
     TEST_ENTRY(stage_options),
-    TEST_ENTRY(errors_say_what_was_expected))
+    TEST_ENTRY(errors_say_what_was_expected),
+    TEST_ENTRY(one_number_syntax_for_every_option))

@@ -1015,7 +1015,29 @@ TEST(fuzz)
     free_names(names, n);
 }
 
+/* A leading UTF-8 byte-order mark is accepted, and columns after it are
+ * counted as the user sees them; one anywhere else is still an error. */
+TEST(a_leading_byte_order_mark_is_accepted)
+{
+    struct scene s;
+    struct diag err;
+    const char *scene = "\xEF\xBB\xBF"
+                        "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\n"
+                        "image width 8 height 8\n";
+    CHECK_MSG(load_text(scene, "bom.scene", &s, &err), "%s", err.msg);
+    scene_free(&s);
+    CHECK(!load_text(
+        "\xEF\xBB\xBF"
+        "frobnicate 1\n",
+        "bom.scene",
+        &s,
+        &err));
+    CHECK_MSG(err.line == 1 && err.col == 1, "%d:%d %s", err.line, err.col, err.msg);
+    CHECK(!load_text("image width 8 height 8\n\xEF\xBB\xBF", "bom.scene", &s, &err));
+}
+
 TEST_MAIN(
+    TEST_ENTRY(a_leading_byte_order_mark_is_accepted),
     TEST_ENTRY(every_scene_loads),
     TEST_ENTRY(cornell_diffuse_point),
     TEST_ENTRY(cornell_diffuse_area),

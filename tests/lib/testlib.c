@@ -1,6 +1,7 @@
 /* testlib.c - see testlib.h. */
 #include "testlib.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -174,11 +175,38 @@ int
 test_run(const char *const argv[], char *output, size_t cap)
 {
     const char *capture = test_tmp_path("run-output.txt");
+    int status = test_wait(test_spawn(argv, capture));
+    if (output && cap > 0) {
+        size_t len = 0;
+        char *text = test_read_file(capture, &len);
+        output[0] = '\0';
+        if (text) {
+            snprintf(output, cap, "%s", text);
+            free(text);
+        }
+    }
+    return status;
+}
+
+int
+test_count_files(const char *dir, const char *prefix)
+{
+    DIR *d = opendir(dir);
+    int n = 0;
+    for (struct dirent *e = d ? readdir(d) : NULL; e; e = readdir(d)) {
+        n += strncmp(e->d_name, prefix, strlen(prefix)) == 0;
+    }
+    if (d) {
+        closedir(d);
+    }
+    return n;
+}
+
+int
+test_spawn(const char *const argv[], const char *capture)
+{
     fflush(stdout);
     pid_t pid = fork();
-    if (pid < 0) {
-        return -1;
-    }
     if (pid == 0) {
         int in = open("/dev/null", O_RDONLY);
         int out = open(capture, O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -191,19 +219,19 @@ test_run(const char *const argv[], char *output, size_t cap)
         execv(argv[0], (char *const *)argv);
         _exit(127);
     }
+    return pid < 0 ? -1 : (int)pid;
+}
+
+int
+test_wait(int pid)
+{
     int status = 0;
-    while (waitpid(pid, &status, 0) < 0) {
+    if (pid < 0) {
+        return -1;
+    }
+    while (waitpid((pid_t)pid, &status, 0) < 0) {
         if (errno != EINTR) {
             return -1;
-        }
-    }
-    if (output && cap > 0) {
-        size_t len = 0;
-        char *text = test_read_file(capture, &len);
-        output[0] = '\0';
-        if (text) {
-            snprintf(output, cap, "%s", text);
-            free(text);
         }
     }
     if (WIFEXITED(status)) {

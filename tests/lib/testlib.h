@@ -25,6 +25,10 @@ const char *test_root_path(const char *relative);
 bool test_write_file(const char *path, const char *text);
 bool test_file_exists(const char *path);
 
+/* How many entries of directory dir have a name starting with prefix
+ * (".stagelight-": the renderer's temporary files). */
+int test_count_files(const char *dir, const char *prefix);
+
 /* Whether two files hold the same bytes (false if either cannot be read). */
 bool test_same_file(const char *a, const char *b);
 
@@ -39,6 +43,14 @@ char *test_read_file(const char *path, size_t *len);
  * run).  Its stdout and stderr together go to `output` (truncated to cap,
  * NUL-terminated) when output is not NULL. */
 int test_run(const char *const argv[], char *output, size_t cap);
+
+/* Start argv as test_run does, its stdout and stderr into the file
+ * `capture`, without waiting: returns its process id (-1 on failure). */
+int test_spawn(const char *const argv[], const char *capture);
+
+/* Wait for a process test_spawn started: its exit status, 128 + signal
+ * when killed, -1 on failure. */
+int test_wait(int pid);
 
 /* Path of a command-line tool of tests/tools/ (compare, merge, ...):
  * $BUILDROOT/tools/NAME (tests/Makefile exports BUILDROOT), else
