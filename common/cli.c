@@ -25,6 +25,7 @@ enum shared_id {
     ID_STATS,
     ID_QUIET,
     ID_STRICT,
+    ID_CAMERA,
     ID_HELP,
     ID_VERSION,
 };
@@ -51,6 +52,7 @@ static const struct shared_option shared_options[] = {
     {ID_STATS, 0, "stats", "FILE", "write the run's statistics as one JSON object"},
     {ID_QUIET, 'q', "quiet", NULL, "no progress bar"},
     {ID_STRICT, 0, "strict", NULL, "refuse a scene that needs what this stage does not model"},
+    {ID_CAMERA, 0, "camera", "NAME", "a glTF scene's camera (default: its first)"},
     {ID_HELP, 0, "help", NULL, "print this help"},
     {ID_VERSION, 0, "version", NULL, "print the version"},
 };
@@ -262,6 +264,9 @@ apply_shared(
         return true;
     case ID_STRICT:
         opt->strict = true;
+        return true;
+    case ID_CAMERA:
+        opt->camera = value;
         return true;
     case ID_HELP:
     case ID_VERSION:

@@ -23,6 +23,7 @@ struct options {
     const char *stats_path; /* --stats */
     bool quiet; /* -q */
     bool strict; /* --strict */
+    const char *camera; /* --camera: a glTF scene's camera by name; NULL: its first */
 };
 
 enum option_kind {

@@ -140,5 +140,8 @@ features_unmodelled(
                 info->after ? info->after : "ignored");
         }
     }
+    for (int i = 0; i < s->n_notes && n < max; i++) {
+        notes[n++] = s->notes[i];
+    }
     return n;
 }

@@ -35,8 +35,12 @@ const char *stage_name(int number);
 /* The features a stage models according to the table above. */
 unsigned features_of_stage(int number);
 
+/* The most diagnostics features_unmodelled gives. */
+#define UNMODELLED_MAX (FEAT_COUNT + SCENE_MAX_NOTES)
+
 /* One diagnostic per feature the scene uses and `modelled` lacks, located at
- * the statement that first uses it.  Fills at most max; returns the count. */
+ * the statement that first uses it, then the scene's notes (what no stage
+ * models).  Fills at most max; returns the count. */
 int features_unmodelled(
     const struct scene *s,
     unsigned modelled,

@@ -12,6 +12,13 @@
  * to positions, its inverse transpose to normals.  Indices are 8, 16 or 32
  * bit; non-indexed primitives are taken three vertices at a time.
  *
+ * Each triangle keeps the index of its primitive's glTF material, and the
+ * materials are returned as the file gives them (gltf_material: factors,
+ * extensions, which textures are used); what the renderer makes of them is
+ * the scene loader's business (scene_gltf.c).  The cameras and the
+ * KHR_lights_punctual lights of the nodes reached are returned in world
+ * space, for a file rendered as the whole scene.
+ *
  * The file is untrusted input: external buffer URIs must be relative and stay
  * inside the model's directory, every accessor is bounds-checked against its
  * buffer view and buffer before it is read, every index against the vertex
@@ -26,6 +33,66 @@
 
 #include "diag.h"
 
+#define GLTF_MAX_NAME 63 /* longer names are cut; control bytes become '?' */
+
+/* The texture slots of a material that name a texture (bits). */
+enum gltf_texture {
+    GLTF_TEX_BASE_COLOR = 1,
+    GLTF_TEX_METALLIC_ROUGHNESS = 2,
+    GLTF_TEX_NORMAL = 4,
+    GLTF_TEX_OCCLUSION = 8,
+    GLTF_TEX_EMISSIVE = 16,
+};
+
+enum gltf_alpha_mode {
+    GLTF_ALPHA_OPAQUE,
+    GLTF_ALPHA_MASK,
+    GLTF_ALPHA_BLEND
+};
+
+/* A glTF material as written, defaults filled in (glTF 2.0, "Materials"). */
+struct gltf_material {
+    char name[GLTF_MAX_NAME + 1]; /* "" when the file gives none */
+    double base_color[4]; /* baseColorFactor: linear RGB and alpha; default 1 */
+    double metallic, roughness; /* metallicFactor, roughnessFactor; default 1 */
+    double emissive[3]; /* emissiveFactor times KHR_materials_emissive_strength */
+    bool has_transmission; /* KHR_materials_transmission present */
+    double transmission; /* its transmissionFactor (default 0) */
+    double ior; /* KHR_materials_ior's ior, 1.5 without it */
+    bool double_sided;
+    enum gltf_alpha_mode alpha_mode;
+    unsigned textures; /* enum gltf_texture bits */
+    /* Extensions of the material that are none of the above, their names
+     * separated by ", " (cut to fit; "" when none). */
+    char other_extensions[160];
+};
+
+/* A camera node: a pinhole at origin looking along forward (the node's -z),
+ * up its +y, both unit, in world space. */
+struct gltf_camera {
+    char name[GLTF_MAX_NAME + 1]; /* the camera's name, else its node's, else "" */
+    bool perspective; /* false: orthographic */
+    double yfov; /* vertical field of view, radians (perspective) */
+    double aspect; /* width / height; 0 when the file gives none */
+    double origin[3], forward[3], up[3];
+};
+
+enum gltf_light_type {
+    GLTF_LIGHT_POINT,
+    GLTF_LIGHT_SPOT,
+    GLTF_LIGHT_DIRECTIONAL
+};
+
+/* A KHR_lights_punctual light node, in world space. */
+struct gltf_light {
+    char name[GLTF_MAX_NAME + 1];
+    enum gltf_light_type type;
+    double color[3]; /* linear RGB, default 1 */
+    double intensity; /* candela (point, spot) or lux (directional) */
+    double range; /* 0: unlimited */
+    double position[3], direction[3]; /* direction: the node's -z, unit */
+};
+
 struct gltf_mesh {
     size_t n_vertices;
     double *positions; /* 3 * n_vertices, world space */
@@ -33,6 +100,14 @@ struct gltf_mesh {
                         (0,0,0) for the vertices of primitives without them */
     size_t n_triangles;
     unsigned *indices; /* 3 * n_triangles, each < n_vertices */
+    int *triangle_material; /* n_triangles: index into materials, or -1 for a
+                               primitive without one (glTF's default material) */
+    struct gltf_material *materials;
+    size_t n_materials;
+    struct gltf_camera *cameras; /* in the order the node tree is walked */
+    size_t n_cameras;
+    struct gltf_light *lights;
+    size_t n_lights;
 };
 
 /* True when built with tinygltf. */

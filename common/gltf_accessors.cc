@@ -230,6 +230,11 @@ plan_primitive(
     *out = part{};
     out->mesh = mesh;
     out->primitive = prim;
+    out->material = p.material;
+    if (p.material < -1 || p.material >= (int)model.materials.size()) {
+        *why = format("%s: material %d does not exist", ctx.c_str(), p.material);
+        return false;
+    }
     out->job = job_index;
     if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != -1) {
         *why = format(

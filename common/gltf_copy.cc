@@ -158,11 +158,13 @@ allocate_mesh(const std::vector<part> &parts, struct gltf_mesh *out, std::string
     // The limits keep these products far from overflow; +1 avoids malloc(0).
     out->positions = (double *)malloc((3 * n_vertices + 1) * sizeof(double));
     out->indices = (unsigned *)malloc((3 * out->n_triangles + 1) * sizeof(unsigned));
+    out->triangle_material = (int *)malloc((out->n_triangles + 1) * sizeof(int));
     if (any_normals) {
         out->normals = (double *)calloc(3 * n_vertices + 1, sizeof(double));
     }
     out->n_vertices = n_vertices;
-    if (!out->positions || !out->indices || (any_normals && !out->normals)) {
+    if (!out->positions || !out->indices || !out->triangle_material
+        || (any_normals && !out->normals)) {
         *why = format("out of memory for %zu vertices", n_vertices);
         return false;
     }
@@ -194,6 +196,9 @@ copy_parts(
         unsigned *dst = out->indices + 3 * first_triangle;
         if (!copy_indices(p, first_vertex, det < 0, dst, why)) {
             return false;
+        }
+        for (size_t t = 0; t < p.n_triangles; t++) {
+            out->triangle_material[first_triangle + t] = p.material;
         }
         first_vertex += p.positions.count;
         first_triangle += p.n_triangles;

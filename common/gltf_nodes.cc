@@ -131,7 +131,32 @@ struct walker {
     const tinygltf::Model *model;
     std::vector<char> seen;
     std::vector<job> jobs;
+    std::vector<placed> cameras_and_lights;
 };
+
+// The light index of a node's KHR_lights_punctual extension, or -1.
+static bool
+node_light(
+    const tinygltf::Model &model,
+    const tinygltf::Node &node,
+    int index,
+    int *light,
+    std::string *why)
+{
+    *light = -1;
+    auto ext = node.extensions.find("KHR_lights_punctual");
+    if (ext == node.extensions.end()) {
+        return true;
+    }
+    const tinygltf::Value &v = ext->second;
+    bool is_int = v.IsObject() && v.Has("light") && v.Get("light").IsInt();
+    *light = is_int ? v.Get("light").Get<int>() : -2;
+    if (*light < 0 || (size_t)*light >= model.lights.size()) {
+        *why = format("node %d: its KHR_lights_punctual light does not exist", index);
+        return false;
+    }
+    return true;
+}
 
 static bool
 walk_node(walker *w, int index, const mat4 &parent, int depth, std::string *why)
@@ -158,6 +183,17 @@ walk_node(walker *w, int index, const mat4 &parent, int depth, std::string *why)
     }
     if (node.mesh >= 0) {
         w->jobs.push_back(job{node.mesh, world});
+    }
+    int light;
+    if (node.camera < -1 || node.camera >= (int)w->model->cameras.size()) {
+        *why = format("node %d: camera %d does not exist", index, node.camera);
+        return false;
+    }
+    if (!node_light(*w->model, node, index, &light, why)) {
+        return false;
+    }
+    if (node.camera >= 0 || light >= 0) {
+        w->cameras_and_lights.push_back(placed{index, node.camera, light, world});
     }
     for (int child : node.children) {
         if (child < 0 || (size_t)child >= w->model->nodes.size()) {
@@ -204,13 +240,17 @@ root_nodes(const tinygltf::Model &model, std::vector<int> *roots, std::string *w
 }
 
 bool
-collect_jobs(const tinygltf::Model &model, std::vector<job> *jobs, std::string *why)
+collect_jobs(
+    const tinygltf::Model &model,
+    std::vector<job> *jobs,
+    std::vector<placed> *cameras_and_lights,
+    std::string *why)
 {
     std::vector<int> roots;
     if (!root_nodes(model, &roots, why)) {
         return false;
     }
-    walker w = {&model, std::vector<char>(model.nodes.size(), 0), {}};
+    walker w = {&model, std::vector<char>(model.nodes.size(), 0), {}, {}};
     for (int root : roots) {
         if (root < 0 || (size_t)root >= model.nodes.size()) {
             *why = format("the scene lists node %d, which does not exist", root);
@@ -221,5 +261,6 @@ collect_jobs(const tinygltf::Model &model, std::vector<job> *jobs, std::string *
         }
     }
     jobs->swap(w.jobs);
+    cameras_and_lights->swap(w.cameras_and_lights);
     return true;
 }

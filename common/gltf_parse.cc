@@ -297,13 +297,14 @@ parse_model(const char *path, tinygltf::Model *model, fs_guard *guard, std::stri
     return run_tinygltf(bytes, binary, dir, model, guard, why);
 }
 
-// Extensions that only change appearance, which we ignore anyway.
+// Extensions the renderer reads or can do without: materials and textures
+// (mapped or noted by the scene loader) and punctual lights.
 bool
 check_required_extensions(const tinygltf::Model &model, std::string *why)
 {
     for (const std::string &name : model.extensionsRequired) {
-        if (name.compare(0, 14, "KHR_materials_") == 0
-            || name.compare(0, 12, "KHR_texture_") == 0) {
+        if (name.compare(0, 14, "KHR_materials_") == 0 || name.compare(0, 12, "KHR_texture_") == 0
+            || name == "KHR_lights_punctual") {
             continue;
         }
         *why = format("the file requires extension '%.100s', which is not supported", name.c_str());

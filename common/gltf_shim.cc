@@ -2,8 +2,8 @@
  * gltf_shim.cc - gltf.h implemented with tinygltf (the project's only C++).
  * This file holds the C API; the loader's steps are in gltf_files.cc (reading
  * files, confined), gltf_parse.cc (GLB and JSON checks, tinygltf),
- * gltf_nodes.cc (transforms), gltf_accessors.cc (checks) and gltf_copy.cc,
- * which share gltf_shim.h.
+ * gltf_nodes.cc (transforms), gltf_accessors.cc (checks), gltf_copy.cc and
+ * gltf_extras.cc (materials, cameras, lights), which share gltf_shim.h.
  *
  * tinygltf parses the JSON and gathers the buffers; everything after that is
  * ours: choosing the nodes, checking every accessor against the bytes that
@@ -62,10 +62,12 @@ load(const char *path, struct gltf_mesh *out, std::string *why)
     tinygltf::Model model;
     fs_guard guard;
     std::vector<job> jobs;
+    std::vector<placed> cameras_and_lights;
     std::vector<part> parts;
     return parse_model(path, &model, &guard, why) && check_required_extensions(model, why)
-           && collect_jobs(model, &jobs, why) && plan_parts(model, jobs, &parts, why)
-           && copy_parts(jobs, parts, out, why);
+           && collect_jobs(model, &jobs, &cameras_and_lights, why)
+           && plan_parts(model, jobs, &parts, why) && copy_parts(jobs, parts, out, why)
+           && copy_materials(model, out, why) && copy_placed(model, cameras_and_lights, out, why);
 }
 
 // Messages may quote the file's own strings: keep control bytes out of them.
@@ -121,5 +123,9 @@ gltf_free(struct gltf_mesh *mesh)
     free(mesh->positions);
     free(mesh->normals);
     free(mesh->indices);
+    free(mesh->triangle_material);
+    free(mesh->materials);
+    free(mesh->cameras);
+    free(mesh->lights);
     *mesh = gltf_mesh{};
 }

@@ -3,7 +3,8 @@
  * them); internal to common/, whose API for meshes is gltf.h.
  *
  * A load goes parse_model -> check_required_extensions -> collect_jobs ->
- * plan_parts -> copy_parts; each returns false with *why set on failure.
+ * plan_parts -> copy_parts -> copy_materials -> copy_placed; each returns
+ * false with *why set on failure.
  */
 #ifndef GLTF_SHIM_H
 #define GLTF_SHIM_H
@@ -49,11 +50,18 @@ struct part {
     view positions, normals, indices;
     bool has_normals, has_indices;
     size_t n_triangles;
+    int material; /* the primitive's material, or -1 */
 };
 
 // A node that draws a mesh, with its world transform.
 struct job {
     int mesh;
+    mat4 world;
+};
+
+// A node that holds a camera or a KHR_lights_punctual light (-1: not).
+struct placed {
+    int node, camera, light;
     mat4 world;
 };
 
@@ -98,8 +106,12 @@ bool skip_image(
 // gltf_parse.cc
 bool parse_model(const char *path, tinygltf::Model *model, fs_guard *guard, std::string *why);
 bool check_required_extensions(const tinygltf::Model &model, std::string *why);
-// gltf_nodes.cc
-bool collect_jobs(const tinygltf::Model &model, std::vector<job> *jobs, std::string *why);
+// gltf_nodes.cc: the mesh nodes, and the camera and light nodes
+bool collect_jobs(
+    const tinygltf::Model &model,
+    std::vector<job> *jobs,
+    std::vector<placed> *cameras_and_lights,
+    std::string *why);
 // gltf_accessors.cc
 bool plan_parts(
     const tinygltf::Model &model,
@@ -110,6 +122,13 @@ bool plan_parts(
 bool copy_parts(
     const std::vector<job> &jobs,
     const std::vector<part> &parts,
+    struct gltf_mesh *out,
+    std::string *why);
+// gltf_extras.cc
+bool copy_materials(const tinygltf::Model &model, struct gltf_mesh *out, std::string *why);
+bool copy_placed(
+    const tinygltf::Model &model,
+    const std::vector<placed> &cameras_and_lights,
     struct gltf_mesh *out,
     std::string *why);
 

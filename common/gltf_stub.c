@@ -35,5 +35,9 @@ gltf_free(struct gltf_mesh *mesh)
     free(mesh->positions);
     free(mesh->normals);
     free(mesh->indices);
+    free(mesh->triangle_material);
+    free(mesh->materials);
+    free(mesh->cameras);
+    free(mesh->lights);
     *mesh = (struct gltf_mesh){0};
 }

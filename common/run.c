@@ -107,8 +107,8 @@ run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage)
 static bool
 report_unmodelled(const struct run *run, unsigned modelled)
 {
-    struct diag notes[FEAT_COUNT];
-    int n = features_unmodelled(&run->scene, modelled, run->stage, notes, FEAT_COUNT);
+    struct diag notes[UNMODELLED_MAX];
+    int n = features_unmodelled(&run->scene, modelled, run->stage, notes, UNMODELLED_MAX);
     for (int i = 0; i < n; i++) {
         diag_print(stderr, &notes[i], run->opt.strict ? "error" : "warning");
     }
@@ -133,7 +133,8 @@ bool
 run_load_scene(struct run *run, unsigned modelled)
 {
     struct diag err;
-    if (!scene_load(run->opt.scene_path, &run->scene, &err)) {
+    const struct scene_options load = {.camera = run->opt.camera};
+    if (!scene_load_with(run->opt.scene_path, &load, &run->scene, &err)) {
         return stop(run, &err, EXIT_INPUT);
     }
     run->scene_loaded = true;

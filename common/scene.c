@@ -16,6 +16,8 @@
  *   scene_materials.c  the material statement and shapes' material names
  *   scene_build.c      camera, image, colours, shapes and lights
  *   scene_mesh.c       mesh files: transforms and glTF meshes
+ *   scene_gltf.c       glTF materials mapped, emitters, notes of what is dropped
+ *   scene_gltf_file.c  a glTF file as the whole scene: camera, lights
  *   scene.c            (this file) statements, scene_load(), scene_free()
  */
 #include "scene.h"
@@ -113,7 +115,7 @@ static const struct statement {
      .build = build_mesh,
      .fields =
          {{.name = "file", .kind = VAL_PATH, .arity = 1, .required = true},
-          MATERIAL_REF,
+          {.name = "material", .kind = VAL_NAME, .arity = 1},
           {.name = "scale", .kind = VAL_SCALE, .arity = 3, .range = &range_not_zero},
           NUMBERS("rotate", 4, false, NULL),
           NUMBERS("translate", 3, false, NULL)}},
@@ -227,7 +229,25 @@ fail:
 bool
 scene_load(const char *path, struct scene *out, struct diag *err)
 {
+    return scene_load_with(path, NULL, out, err);
+}
+
+bool
+scene_load_with(
+    const char *path,
+    const struct scene_options *opt,
+    struct scene *out,
+    struct diag *err)
+{
+    const char *camera = opt ? opt->camera : NULL;
+    if (scene_path_is_gltf(path)) {
+        return scene_load_gltf(path, camera, out, err);
+    }
     *out = (struct scene){.width = 0};
+    if (camera) {
+        diag_set(err, path, 0, 0, "--camera chooses a camera of a glTF scene (.glb, .gltf)");
+        return false;
+    }
     char *text = NULL;
     size_t len = 0;
     if (!read_file(path, &text, &len, err)) {

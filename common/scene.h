@@ -23,6 +23,7 @@
 #define SCENE_MAX_IMAGE_DIM 16384
 #define SCENE_MAX_NAME 63
 #define SCENE_MAX_MATERIALS 4096
+#define SCENE_MAX_NOTES 32
 
 /* A place in a scene file (1-based line and column; 0,0 = no place). */
 struct src_loc {
@@ -140,11 +141,34 @@ struct scene {
 
     unsigned features; /* FEATURE_BIT(f) for each feature used */
     struct src_loc feature_loc[FEAT_COUNT]; /* statement where each is first used */
+
+    /* What the scene asks for that no stage models, beyond the features
+     * (a glTF texture, a rough metal, a spot light...): one line per kind,
+     * with the statement (or the glTF file) it comes from.  Every stage
+     * prints them as warnings; --strict refuses the scene. */
+    struct diag notes[SCENE_MAX_NOTES];
+    int n_notes;
 };
 
 /* Load a scene file.  On failure returns false, frees what was built and
- * fills err with FILE:LINE:COL and what was expected, what was found. */
+ * fills err with FILE:LINE:COL and what was expected, what was found.
+ * A path ending in .glb or .gltf (any case) is a glTF file taken as the
+ * whole scene: its first camera, its lights, its meshes and materials
+ * (docs/scene-format.md, "A glTF file as the scene"). */
 bool scene_load(const char *path, struct scene *out, struct diag *err);
+
+/* Choices for a glTF file loaded as the scene. */
+struct scene_options {
+    const char *camera; /* the camera's name; NULL: the file's first */
+};
+
+/* scene_load with options (opt may be NULL); a camera named for a scene
+ * that is not a glTF file is an error. */
+bool scene_load_with(
+    const char *path,
+    const struct scene_options *opt,
+    struct scene *out,
+    struct diag *err);
 
 /* Same, from text in memory; `name` is the file name used in diagnostics and
  * the directory mesh files are found relative to. */

@@ -205,7 +205,7 @@ build_triangle(struct parser *p, const struct token *kw, struct fields *fs)
 }
 
 bool
-build_point_light(struct parser *p, const struct token *kw, struct fields *fs)
+add_point_light(struct parser *p, const struct token *kw, struct point_light light)
 {
     struct scene *s = p->scene;
     int n = s->n_point_lights;
@@ -214,17 +214,38 @@ build_point_light(struct parser *p, const struct token *kw, struct fields *fs)
         return false;
     }
     s->point_lights = a;
-    a[s->n_point_lights++] = (struct point_light){
+    a[s->n_point_lights++] = light;
+    use_feature(p, FEAT_POINT_LIGHT, kw);
+    return true;
+}
+
+bool
+build_point_light(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    struct point_light light = {
         .position = vec_of(fs, "position"),
         .intensity = vec_of(fs, "intensity")};
-    use_feature(p, FEAT_POINT_LIGHT, kw);
+    return add_point_light(p, kw, light);
+}
+
+bool
+add_area_light(struct parser *p, const struct token *kw, struct area_light light)
+{
+    struct scene *s = p->scene;
+    int n = s->n_area_lights;
+    struct area_light *a = grow(p, kw, s->area_lights, n + 1, &p->cap.areas, sizeof *a);
+    if (!a) {
+        return false;
+    }
+    s->area_lights = a;
+    a[s->n_area_lights++] = light;
+    use_feature(p, FEAT_AREA_LIGHT, kw);
     return true;
 }
 
 bool
 build_area_light(struct parser *p, const struct token *kw, struct fields *fs)
 {
-    struct scene *s = p->scene;
     struct area_light light = {.corner = vec_of(fs, "corner"), .loc = loc_of(kw)};
     light.edge1 = vec_of(fs, "edge1");
     light.edge2 = vec_of(fs, "edge2");
@@ -236,13 +257,5 @@ build_area_light(struct parser *p, const struct token *kw, struct fields *fs)
     if (!(area > 0)) {
         return fail(p, kw, "area_light has zero area (edge1 and edge2 are parallel or zero)");
     }
-    int n = s->n_area_lights;
-    struct area_light *a = grow(p, kw, s->area_lights, n + 1, &p->cap.areas, sizeof *a);
-    if (!a) {
-        return false;
-    }
-    s->area_lights = a;
-    a[s->n_area_lights++] = light;
-    use_feature(p, FEAT_AREA_LIGHT, kw);
-    return true;
+    return add_area_light(p, kw, light);
 }

@@ -2,7 +2,9 @@
  * scene_mesh.c - the `mesh` statement: its transform (scale, then rotate,
  * then translate), the file name resolved against the scene's directory, the
  * glTF loader behind gltf.h, and the vertices and triangles appended to the
- * scene's one shared triangle list.
+ * scene's one shared triangle list.  Without a `material` field each
+ * primitive keeps its file's material (scene_gltf.c), and the triangles of
+ * emissive ones become emitting triangles: area lights of triangle shape.
  */
 #include "scene_parser.h"
 
@@ -97,18 +99,52 @@ transform_vertex(
     return rotate_into(xf, v, xf->offset, pos) && rotate_into(xf, n, no_offset, normal);
 }
 
+/* Triangle v0 v1 v2 of the scene's vertices as an emitting triangle: it
+ * emits from the side of cross(v1 - v0, v2 - v0), glTF's front face (a
+ * mirroring transform swaps two corners to keep it so).  One of zero area
+ * emits nothing and is left out. */
+static bool
+append_emitter(
+    struct parser *p,
+    const struct token *at,
+    const int v[3],
+    bool mirrored,
+    const struct file_surface *surface)
+{
+    struct scene *s = p->scene;
+    vec3 p0 = s->positions[v[0]];
+    vec3 e1 = vec3_sub(s->positions[v[mirrored ? 2 : 1]], p0);
+    vec3 e2 = vec3_sub(s->positions[v[mirrored ? 1 : 2]], p0);
+    struct area_light light = {
+        .corner = p0,
+        .edge1 = e1,
+        .edge2 = e2,
+        .radiance = surface->emission,
+        .triangle = true,
+        .two_sided = surface->two_sided,
+        .loc = loc_of(at),
+    };
+    real area = area_light_area(&light);
+    return !(area > 0) || !isfinite(area) || add_area_light(p, at, light);
+}
+
+/* The file's vertices, transformed, and its triangles: of `material`, or
+ * (material < 0) of their own surfaces. */
 static bool
 append_mesh(
     struct parser *p,
     const struct token *at,
     const struct gltf_mesh *mesh,
     const struct transform *xf,
-    int material)
+    int material,
+    const struct file_surface *surfaces)
 {
     struct scene *s = p->scene;
     if (!room_for_mesh(p, at, mesh->n_vertices, mesh->n_triangles)) {
         return false;
     }
+    bool mirrored = xf->scale[0] * xf->scale[1] * xf->scale[2] < 0;
+    int n_triangles = s->n_triangles;
     for (size_t i = 0; i < mesh->n_vertices; i++) {
         size_t v = (size_t)s->n_vertices + i;
         if (!transform_vertex(xf, mesh, i, &s->positions[v], &s->normals[v])) {
@@ -116,7 +152,15 @@ append_mesh(
         }
     }
     for (size_t i = 0; i < mesh->n_triangles; i++) {
-        struct triangle tri = {.material = material, .smooth = mesh->normals != NULL};
+        const struct file_surface *surface = NULL;
+        if (material < 0) {
+            int m = mesh->triangle_material[i];
+            surface = &surfaces[m >= 0 ? (size_t)m : mesh->n_materials];
+        }
+        struct triangle tri = {
+            .material = surface ? surface->material : material,
+            .smooth = mesh->normals != NULL,
+        };
         for (int k = 0; k < 3; k++) {
             unsigned index = mesh->indices[3 * i + (size_t)k];
             if (index >= mesh->n_vertices) {
@@ -132,11 +176,51 @@ append_mesh(
             // Interpolating a missing (zero) vertex normal would give no normal.
             tri.smooth = tri.smooth && !vec3_is_zero(s->normals[tri.v[k]]);
         }
-        s->triangles[s->n_triangles + (int)i] = tri;
+        if (tri.material >= 0) {
+            s->triangles[n_triangles++] = tri;
+        } else if (!append_emitter(p, at, tri.v, mirrored, surface)) {
+            return false;
+        }
     }
     s->n_vertices += (int)mesh->n_vertices;
-    s->n_triangles += (int)mesh->n_triangles;
+    s->n_triangles = n_triangles;
     return true;
+}
+
+/* append_mesh with the file's own materials. */
+static bool
+append_with_surfaces(
+    struct parser *p,
+    const struct token *at,
+    const char *file,
+    const struct gltf_mesh *mesh,
+    const struct transform *xf)
+{
+    struct file_surface *surfaces = NULL;
+    if (!map_file_materials(p, at, file, mesh, &surfaces)) {
+        return false;
+    }
+    bool ok = append_mesh(p, at, mesh, xf, -1, surfaces);
+    free(surfaces);
+    return ok;
+}
+
+bool
+append_file_mesh(
+    struct parser *p,
+    const struct token *at,
+    const char *file,
+    const struct gltf_mesh *mesh)
+{
+    static const struct transform identity = {
+        .scale = {1, 1, 1},
+        .rotation = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}},
+    };
+    bool ok = append_with_surfaces(p, at, file, mesh, &identity);
+    if (ok) {
+        use_feature(p, FEAT_MESH, at);
+    }
+    return ok;
 }
 
 /* The file token's text (quotes and escapes removed) into name, and the
@@ -165,8 +249,8 @@ mesh_path(struct parser *p, const struct token *t, char *name, char *path)
     return true;
 }
 
-static bool
-load_mesh(
+bool
+load_gltf_file(
     struct parser *p,
     const struct token *t,
     const char *name,
@@ -213,18 +297,21 @@ note_input_file(struct parser *p, const struct token *t, const char *path)
 bool
 build_mesh(struct parser *p, const struct token *kw, struct fields *fs)
 {
-    int material;
+    int material = -1;
     struct transform xf;
-    if (!use_material(p, kw, fs, &material) || !make_transform(p, fs, &xf)) {
+    bool own_materials = !get(fs, "material");
+    if ((!own_materials && !use_material(p, kw, fs, &material)) || !make_transform(p, fs, &xf)) {
         return false;
     }
     const struct token *file = &get(fs, "file")->val[0];
     char name[MAX_PATH_CHARS], path[MAX_PATH_CHARS];
     struct gltf_mesh mesh = {.n_vertices = 0};
-    if (!mesh_path(p, file, name, path) || !load_mesh(p, file, name, path, &mesh)) {
+    if (!mesh_path(p, file, name, path) || !load_gltf_file(p, file, name, path, &mesh)) {
         return false;
     }
-    bool ok = append_mesh(p, file, &mesh, &xf, material) && note_input_file(p, file, path);
+    bool ok = (own_materials ? append_with_surfaces(p, kw, name, &mesh, &xf)
+                             : append_mesh(p, file, &mesh, &xf, material, NULL))
+              && note_input_file(p, file, path);
     gltf_free(&mesh);
     if (ok) {
         use_feature(p, FEAT_MESH, kw);

@@ -133,6 +133,9 @@ void use_feature(struct parser *p, enum feature f, const struct token *kw);
 void *grow(struct parser *p, const struct token *at, void *items, int need, int *cap, size_t size);
 /* Room for n more vertices and m more triangles. */
 bool room_for_mesh(struct parser *p, const struct token *at, size_t n, size_t m);
+/* Append a light and record its feature. */
+bool add_point_light(struct parser *p, const struct token *kw, struct point_light light);
+bool add_area_light(struct parser *p, const struct token *kw, struct area_light light);
 /* The shape's `material` field: its index, and the feature its kind needs. */
 bool use_material(struct parser *p, const struct token *kw, const struct fields *fs, int *out);
 
@@ -148,5 +151,51 @@ bool build_triangle(struct parser *p, const struct token *kw, struct fields *fs)
 bool build_mesh(struct parser *p, const struct token *kw, struct fields *fs);
 bool build_point_light(struct parser *p, const struct token *kw, struct fields *fs);
 bool build_area_light(struct parser *p, const struct token *kw, struct fields *fs);
+
+/* --- glTF files (scene_gltf.c, scene_mesh.c, scene_gltf_file.c) ----------- */
+
+struct gltf_mesh;
+
+/* What a material of a glTF file became in the scene. */
+struct file_surface {
+    int material; /* the scene material; -1 for an emitter */
+    vec3 emission; /* an emitter's radiance */
+    bool two_sided; /* an emitter's doubleSided */
+};
+
+/* Add a note to the scene (at most SCENE_MAX_NOTES; the last says more
+ * were left out). */
+void scene_add_note(struct scene *s, struct src_loc at, const char *fmt, ...) DIAG_PRINTF(3, 4);
+
+/* Map the materials the mesh's triangles use onto scene materials and
+ * emitters, and note what they drop (one note per kind).  *out gets one
+ * entry per glTF material and one more, last, for glTF's default material
+ * (free it). */
+bool map_file_materials(
+    struct parser *p,
+    const struct token *at,
+    const char *file,
+    const struct gltf_mesh *mesh,
+    struct file_surface **out);
+
+/* Load the glTF file at path (named `name` in messages) into *out. */
+bool load_gltf_file(
+    struct parser *p,
+    const struct token *at,
+    const char *name,
+    const char *path,
+    struct gltf_mesh *out);
+
+/* Append a loaded file as it stands (no transform) with its own
+ * materials and emitters. */
+bool append_file_mesh(
+    struct parser *p,
+    const struct token *at,
+    const char *file,
+    const struct gltf_mesh *mesh);
+
+/* A glTF file as the whole scene (scene_gltf_file.c). */
+bool scene_path_is_gltf(const char *path);
+bool scene_load_gltf(const char *path, const char *camera, struct scene *out, struct diag *err);
 
 #endif /* SCENE_PARSER_H */

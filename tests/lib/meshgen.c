@@ -851,7 +851,7 @@ json_node(struct text *t, const struct meshgen_glb_options *o)
             json_numbers(t, "scale", o->scale, 3);
         }
     }
-    text_printf(t, "}],");
+    text_printf(t, "}%s%s],", o->nodes ? "," : "", o->nodes ? o->nodes : "");
 }
 
 static void
@@ -940,8 +940,19 @@ json_document(struct text *t, const struct glb_plan *plan)
         text_printf(t, "\"");
     }
     text_printf(t, "},");
-    text_printf(t, "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],");
-    json_node(t, plan->opts);
+    const struct meshgen_glb_options *o = plan->opts;
+    text_printf(t, "\"scene\":0,\"scenes\":[{\"nodes\":[0");
+    for (int i = 1; o->nodes && i <= o->n_nodes; i++) {
+        text_printf(t, ",%d", i);
+    }
+    text_printf(t, "]}],");
+    json_node(t, o);
+    if (o->material) {
+        text_printf(t, "\"materials\":[%s],", o->material);
+    }
+    if (o->members) {
+        text_printf(t, "%s,", o->members);
+    }
     text_printf(t, "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0");
     if (plan->normals) {
         text_printf(t, ",\"NORMAL\":1");
@@ -950,7 +961,7 @@ json_document(struct text *t, const struct glb_plan *plan)
     if (plan->index_bytes) {
         text_printf(t, ",\"indices\":%d", plan->normals ? 2 : 1);
     }
-    text_printf(t, ",\"mode\":4}]}],");
+    text_printf(t, ",\"mode\":4%s}]}],", o->material ? ",\"material\":0" : "");
     json_accessors(t, plan);
     text_printf(t, "\"buffers\":[{\"byteLength\":%zu}]}", plan->bin_length);
     // Pad the JSON chunk with spaces to a multiple of 4 bytes.

@@ -139,6 +139,16 @@ struct meshgen_glb_options {
     /* asset.copyright (UTF-8; quotes, backslashes and control characters
      * are escaped), or NULL for none. */
     const char *copyright;
+    /* JSON spliced in as written, for files that say more than geometry
+     * (each NULL when unused): `material` is the primitive's material, an
+     * object such as {"pbrMetallicRoughness":{"baseColorFactor":[1,0,0,1]}};
+     * `nodes` holds n_nodes more node objects, comma-separated, each a root
+     * of the scene after the mesh's node (cameras, lights); `members` more
+     * members of the top-level object, e.g. "cameras":[...]. */
+    const char *material;
+    const char *nodes;
+    int n_nodes;
+    const char *members;
 };
 
 /* Write m as a .glb: one scene, one node (with the options' transform), one

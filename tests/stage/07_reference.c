@@ -1,7 +1,9 @@
 /*
  * 07_reference.c - the path tracer against Mitsuba 3 (TESTING.md T25):
  * cornell_diffuse_point, cornell_diffuse_area and cornell_specular_area
- * against their global-illumination references (tests/reference/, the
+ * against their global-illumination references, and cornell_gltf_area (the
+ * box and its light from models/cornell_box.glb: the file's materials and
+ * its emitting triangles, picked by power) against cornell_diffuse_area's (tests/reference/, the
  * *_gi.pfm files; SCENES.md; Mitsuba's `path` integrator, unbounded depth).
  *
  * Design (Nori's and Mitsuba's render tests, with our own numbers):
@@ -64,9 +66,9 @@
 #define NOISE_RATIO 1.8
 
 /* Blocks of one image, plus the whole-image test, times 3 channels, times
- * the 3 scenes. */
+ * the 4 scenes. */
 #define N_BLOCKS ((SIZE / BLOCK) * (SIZE / BLOCK))
-#define N_STAT_TESTS (3.0 * 3 * (N_BLOCKS + 1))
+#define N_STAT_TESTS (3.0 * 4 * (N_BLOCKS + 1))
 
 struct case_ {
     const char *scene;
@@ -234,7 +236,15 @@ TEST(specular_area_light_matches_mitsuba)
     check_scene(&c, pathcheck_seed(7001) + 2000);
 }
 
+TEST(gltf_box_and_light_match_mitsuba)
+{
+    const char *reference = "cornell_diffuse_area_gi";
+    const struct case_ c = {"scenes/cornell_gltf_area.scene", reference};
+    check_scene(&c, pathcheck_seed(7001) + 3000);
+}
+
 TEST_MAIN(
     TEST_ENTRY(diffuse_point_light_matches_mitsuba),
     TEST_ENTRY(diffuse_area_light_matches_mitsuba),
-    TEST_ENTRY(specular_area_light_matches_mitsuba))
+    TEST_ENTRY(specular_area_light_matches_mitsuba),
+    TEST_ENTRY(gltf_box_and_light_match_mitsuba))

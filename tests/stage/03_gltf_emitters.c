@@ -1,0 +1,159 @@
+/*
+ * 03_gltf_emitters.c - an emissive glTF mesh is a light (emitting
+ * triangles, docs/scene-format.md), through the stage's binary; from the
+ * stage that models area lights on.
+ *
+ *  - A generated square of two triangles with emissiveFactor (1, 0.5,
+ *    0.25) and KHR_materials_emissive_strength 8, facing down, lights a
+ *    floor as the `area_light` of the same rectangle and radiance
+ *    (8, 4, 2) does: the floor's mean agrees within 2% (both estimates
+ *    are noisy: 256 shadow rays per light, or 16 paths of 16 from 06 on), and
+ *    the camera sees exactly that radiance on it.
+ *  - One-sided unless doubleSided: seen from above, the square is black;
+ *    with doubleSided it shows its radiance.
+ * The floor is black-free and the light black as a surface, so no light is
+ * reflected twice: global illumination (07) changes nothing expected.
+ */
+#include <string.h>
+
+#include "check.h"
+#include "meshgen.h"
+#include "stagecheck.h"
+#include "testlib.h"
+
+#define HALF 0.3
+#define HEIGHT 1.5
+
+/* The square x, z in [-HALF, HALF] at y = HEIGHT, wound clockwise seen
+ * from above so that its front (glTF's counter-clockwise side) faces
+ * down. */
+static const char *
+write_lamp(const char *name, bool double_sided)
+{
+    struct meshgen_mesh m = {0};
+    if (!meshgen_alloc(&m, 4, 2, false)) {
+        CHECK(false);
+        return NULL;
+    }
+    static const double corners[4][3] = {
+        {-HALF, HEIGHT, -HALF},
+        {HALF, HEIGHT, -HALF},
+        {HALF, HEIGHT, HALF},
+        {-HALF, HEIGHT, HALF},
+    };
+    static const unsigned tris[6] = {0, 1, 2, 0, 2, 3};
+    memcpy(m.positions, corners, sizeof corners);
+    memcpy(m.indices, tris, sizeof tris);
+    char material[256];
+    snprintf(
+        material,
+        sizeof material,
+        "{\"name\":\"lamp\",\"doubleSided\":%s,\"emissiveFactor\":[1,0.5,0.25],"
+        "\"pbrMetallicRoughness\":{\"baseColorFactor\":[0,0,0,1]},\"extensions\":"
+        "{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":8}}}",
+        double_sided ? "true" : "false");
+    struct meshgen_glb_options opts = {.material = material};
+    char file[64];
+    snprintf(file, sizeof file, "%s.glb", name);
+    const char *path = test_tmp_path(file);
+    bool ok = meshgen_write_glb(&m, path, &opts);
+    meshgen_free(&m);
+    CHECK_MSG(ok, "cannot write %s", path);
+    return ok ? path : NULL;
+}
+
+#define FLOOR \
+    "material floor diffuse albedo 0.5 0.5 0.5\n" \
+    "quad corner -4 0 -4 edge1 0 0 8 edge2 8 0 0 material floor\n"
+
+/* The floor below the light and, at the top of the image, the light. */
+#define SIDE_CAMERA \
+    "camera origin 0 0.8 2.5 target 0 0.6 0 up 0 1 0 fov 60\nimage width 48 height 48\n"
+
+static double
+mean(const struct image *img, int c)
+{
+    return stagecheck_region_mean(img, 0, 0, img->width, img->height, c);
+}
+
+static bool
+render(const char *scene, struct image *out)
+{
+    const char *const args[] = {"-s", "16", "--shadow-samples", "16", NULL};
+    const char *const one[] = {"--shadow-samples", "256", NULL};
+    bool samples = strcmp(STAGE_NAME, "06_supersample") >= 0;
+    return stagecheck_render(scene, samples ? args : one, out, NULL);
+}
+
+TEST(emissive_square_lights_like_the_area_light)
+{
+    if (!write_lamp("lamp", false)) {
+        return;
+    }
+    const char *mesh = stagecheck_scene("mesh.scene", SIDE_CAMERA FLOOR "mesh file lamp.glb\n");
+    const char *rect = stagecheck_scene(
+        "rect.scene",
+        SIDE_CAMERA FLOOR "area_light corner %g %g %g edge1 %g 0 0 edge2 0 0 %g radiance 8 4 2\n",
+        -HALF,
+        HEIGHT,
+        -HALF,
+        2 * HALF,
+        2 * HALF);
+    struct image a = {0};
+    struct image b = {0};
+    if (!mesh || !rect || !render(mesh, &a) || !render(rect, &b)) {
+        CHECK(false);
+        image_free(&a);
+        return;
+    }
+    for (int c = 0; c < 3; c++) {
+        double ma = mean(&a, c);
+        double mb = mean(&b, c);
+        printf("channel %d: emissive mesh %.6g, area light %.6g\n", c, ma, mb);
+        CHECK_MSG(fabs(ma - mb) < 0.02 * mb, "channel %d: %g vs %g", c, ma, mb);
+    }
+    /* The light's radiance where the camera sees it: the brightest pixel. */
+    float best = 0;
+    size_t at = 0;
+    for (size_t i = 0; i < (size_t)a.width * (size_t)a.height; i++) {
+        if (a.rgb[3 * i] > best) {
+            best = a.rgb[3 * i];
+            at = i;
+        }
+    }
+    CHECK_NEAR(a.rgb[3 * at], 8, 1e-5);
+    CHECK_NEAR(a.rgb[3 * at + 1], 4, 1e-5);
+    CHECK_NEAR(a.rgb[3 * at + 2], 2, 1e-5);
+    image_free(&a);
+    image_free(&b);
+}
+
+/* The camera above the light, looking down at its back. */
+#define TOP_CAMERA "camera origin 0 3 0 target 0 0 0 up 0 0 -1 fov 10\nimage width 8 height 8\n"
+
+TEST(one_sided_unless_double_sided)
+{
+    if (!write_lamp("one", false) || !write_lamp("two", true)) {
+        return;
+    }
+    const char *one = stagecheck_scene("one.scene", TOP_CAMERA FLOOR "mesh file one.glb\n");
+    const char *two = stagecheck_scene("two.scene", TOP_CAMERA FLOOR "mesh file two.glb\n");
+    struct image a = {0};
+    struct image b = {0};
+    if (!one || !two || !render(one, &a) || !render(two, &b)) {
+        CHECK(false);
+        image_free(&a);
+        return;
+    }
+    /* The whole view is the light's back. */
+    for (int c = 0; c < 3; c++) {
+        CHECK_NEAR(mean(&a, c), 0, 0);
+        CHECK_NEAR(mean(&b, c), c == 0 ? 8 : c == 1 ? 4 : 2, 1e-5);
+    }
+    image_free(&a);
+    image_free(&b);
+}
+
+TEST_MAIN(
+    TEST_ENTRY(emissive_square_lights_like_the_area_light),
+    TEST_ENTRY(one_sided_unless_double_sided))
