@@ -11,6 +11,9 @@
  *    the camera sees exactly that radiance on it.
  *  - One-sided unless doubleSided: seen from above, the square is black;
  *    with doubleSided it shows its radiance.
+ *  - scenes/cornell_blocks.gltf, the library's scene written as glTF
+ *    (docs/blender.md), renders from the file alone under --strict: nothing
+ *    is dropped, and its light shows radiance (12, 10, 8).
  * The floor is black-free and the light black as a surface, so no light is
  * reflected twice: global illumination (07) changes nothing expected.
  */
@@ -76,6 +79,17 @@ mean(const struct image *img, int c)
     return stagecheck_region_mean(img, 0, 0, img->width, img->height, c);
 }
 
+/* The index of the pixel brightest in red: where the light is seen. */
+static size_t
+brightest_pixel(const struct image *img)
+{
+    size_t at = 0;
+    for (size_t i = 0; i < (size_t)img->width * (size_t)img->height; i++) {
+        at = img->rgb[3 * i] > img->rgb[3 * at] ? i : at;
+    }
+    return at;
+}
+
 static bool
 render(const char *scene, struct image *out)
 {
@@ -112,15 +126,8 @@ TEST(emissive_square_lights_like_the_area_light)
         printf("channel %d: emissive mesh %.6g, area light %.6g\n", c, ma, mb);
         CHECK_MSG(fabs(ma - mb) < 0.02 * mb, "channel %d: %g vs %g", c, ma, mb);
     }
-    /* The light's radiance where the camera sees it: the brightest pixel. */
-    float best = 0;
-    size_t at = 0;
-    for (size_t i = 0; i < (size_t)a.width * (size_t)a.height; i++) {
-        if (a.rgb[3 * i] > best) {
-            best = a.rgb[3 * i];
-            at = i;
-        }
-    }
+    /* The light's radiance where the camera sees it. */
+    size_t at = brightest_pixel(&a);
     CHECK_NEAR(a.rgb[3 * at], 8, 1e-5);
     CHECK_NEAR(a.rgb[3 * at + 1], 4, 1e-5);
     CHECK_NEAR(a.rgb[3 * at + 2], 2, 1e-5);
@@ -154,6 +161,30 @@ TEST(one_sided_unless_double_sided)
     image_free(&b);
 }
 
+TEST(library_scene_written_as_gltf_renders_strict)
+{
+    const char *scene = test_root_path("scenes/cornell_blocks.gltf");
+    const char *const args[] = {"--strict", "-W", "32", NULL};
+    const char *const to_file[] = {"--strict", "-W", "32", "-o", test_tmp_path("blocks.pfm"), NULL};
+    static char text[4096];
+    CHECK_MSG(test_render(scene, to_file, text, sizeof text) == 0, "%s", text);
+    CHECK_MSG(strstr(text, "warning") == NULL, "%s", text);
+    struct image img = {0};
+    if (!test_render_image(scene, args, &img)) {
+        CHECK(false);
+        return;
+    }
+    CHECK(img.width == 32 && img.height == 32);
+    size_t at = brightest_pixel(&img);
+    /* The light covers whole pixels of the image's top row of the box. */
+    CHECK_NEAR(img.rgb[3 * at], 12, 1e-4);
+    CHECK_NEAR(img.rgb[3 * at + 1], 10, 1e-4);
+    CHECK_NEAR(img.rgb[3 * at + 2], 8, 1e-4);
+    CHECK(mean(&img, 1) > 0.01);
+    image_free(&img);
+}
+
 TEST_MAIN(
     TEST_ENTRY(emissive_square_lights_like_the_area_light),
-    TEST_ENTRY(one_sided_unless_double_sided))
+    TEST_ENTRY(one_sided_unless_double_sided),
+    TEST_ENTRY(library_scene_written_as_gltf_renders_strict))
