@@ -27,27 +27,9 @@ all: $(STAGES) tools models
 common:
 	@$(MAKE) --no-print-directory -C common
 
-# The 1,075,840-triangle Happy Buddha: happy_res3 with every triangle split
-# into four at its edge midpoints, twice (scenes/models/CREDITS.md).  Too big
-# for the repository (25 MB) and made in a second, so it is generated.  It
-# does not depend on the build variant (REAL, SANITIZE): the same bytes from
-# any of them, made once.  It needs the glTF loader (tinygltf).
-MODELS := build/models/happy_res3_subdiv16.glb
-STANFORD_CREDIT := Stanford 3D Scanning Repository, Stanford University Computer Graphics \
-	Laboratory (Happy Buddha, happy_vrip_res3), subdivided twice by stagelight
-ifeq ($(TINYGLTF),1)
-models: $(MODELS)
-else
-models:
-	@echo "models: not generated (no glTF support: apt-get install libtinygltf-dev)"
-endif
-
-build/models/happy_res3_subdiv16.glb: scenes/models/happy_res3.glb tests/tools/subdivide_glb.c \
-		tests/lib/meshgen.c | tools
-	@mkdir -p $(@D)
-	@tmp=$@.tmp-$$$$; \
-	$(BUILDROOT)tools/subdivide_glb $< 2 $$tmp "$(STANFORD_CREDIT)" && mv -f $$tmp $@ \
-		|| { rm -f $$tmp; exit 1; }
+# The generated models (build/models/), made after the common core.
+include scenes/models/models.mk
+$(MODELS): | common
 
 # Each stage after the common core, so parallel stage builds never race on it.
 $(STAGES): common
