@@ -55,6 +55,15 @@ static const struct feature_info table[FEAT_COUNT] = {
             .before = "seen by rays that miss, but it lights nothing",
         },
     [FEAT_MESH] = {.name = "glTF mesh", .first_stage = 1, .last_stage = STAGE_COUNT},
+    [FEAT_SPHERE_LIGHT] =
+        {
+            .name = "sphere light",
+            .first_stage = 3,
+            .last_stage = STAGE_COUNT,
+            .before = "lit as a point light at its centre with intensity L*pi*r^2 (the same "
+                      "irradiance where the whole sphere is above the horizon), and not seen by "
+                      "the camera",
+        },
 };
 
 static const char *const stage_names[STAGE_COUNT + 1] = {

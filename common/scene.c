@@ -70,7 +70,8 @@ static const struct statement {
          {NUMBERS("origin", 3, true, NULL),
           NUMBERS("target", 3, true, NULL),
           NUMBERS("up", 3, true, NULL),
-          NUMBERS("fov", 1, true, &range_fov)}},
+          NUMBERS("fov", 1, true, &range_fov),
+          NUMBERS("near", 1, false, &range_nonnegative)}},
     {.keyword = "image",
      .once = true,
      .required = true,
@@ -129,6 +130,12 @@ static const struct statement {
          {NUMBERS("corner", 3, true, NULL),
           NUMBERS("edge1", 3, true, NULL),
           NUMBERS("edge2", 3, true, NULL),
+          NUMBERS("radiance", 3, true, &range_nonnegative)}},
+    {.keyword = "sphere_light",
+     .build = build_sphere_light,
+     .fields =
+         {NUMBERS("center", 3, true, NULL),
+          NUMBERS("radius", 1, true, &range_positive),
           NUMBERS("radiance", 3, true, &range_nonnegative)}},
 };
 
@@ -300,5 +307,6 @@ scene_free(struct scene *s)
         free(s->input_files[i]);
     }
     free(s->input_files);
+    free(s->sphere_lights);
     *s = (struct scene){.width = 0};
 }

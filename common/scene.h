@@ -8,7 +8,8 @@
  *
  * Conventions are those of SCENES.md: right-handed, y up, vertical field of
  * view in degrees, linear RGB, Lambertian BRDF albedo/pi, point-light
- * intensity in W/sr, one-sided quad area lights with radiance L.
+ * intensity in W/sr, one-sided quad area lights and emitting spheres with
+ * radiance L.
  */
 #ifndef SCENE_H
 #define SCENE_H
@@ -92,9 +93,20 @@ struct area_light {
     struct src_loc loc;
 };
 
+/* A sphere emitting constant radiance L outward from every point of its
+ * surface: a spherical area light.  As a surface it is black on both sides
+ * and blocks light like any other surface. */
+struct sphere_light {
+    vec3 center;
+    real radius;
+    vec3 radiance;
+    struct src_loc loc;
+};
+
 struct camera_desc {
     vec3 origin, target, up;
     real vfov_deg; /* vertical field of view, degrees, in (0, 180) */
+    real near; /* camera rays start on the plane at this depth along the view (>= 0) */
 };
 
 /* ORDER FEATURE: append only; feature_table.c describes each. */
@@ -108,6 +120,7 @@ enum feature {
     FEAT_AMBIENT, /* a non-zero ambient term */
     FEAT_ENVIRONMENT, /* a non-black background, which lights the scene in 07 */
     FEAT_MESH, /* a triangle mesh loaded from a glTF file */
+    FEAT_SPHERE_LIGHT, /* an emitting sphere */
     FEAT_COUNT,
 };
 
@@ -135,6 +148,8 @@ struct scene {
     int n_point_lights;
     struct area_light *area_lights;
     int n_area_lights;
+    struct sphere_light *sphere_lights;
+    int n_sphere_lights;
 
     char **input_files; /* the files read besides the scene (meshes): no output may be one */
     int n_input_files;
@@ -222,6 +237,29 @@ area_light_cos(const struct area_light *light, vec3 n, vec3 d)
 {
     real c = vec3_dot(n, d);
     return light->two_sided ? fabs(c) : c;
+}
+
+/* The intensity (W/sr) of a point at a sphere light's centre that gives the
+ * same irradiance as the sphere wherever all of it is above the horizon:
+ * from outside, a sphere of radiance L and radius r subtends the solid angle
+ * of a disc of area pi r^2 facing the viewer, so it acts as I = L pi r^2
+ * (its irradiance at distance d is L pi (r/d)^2 cos(theta) = I cos / d^2). */
+static inline vec3
+sphere_light_intensity(const struct sphere_light *light)
+{
+    return vec3_scale(light->radiance, PI * light->radius * light->radius);
+}
+
+/* The radiance light number `light` sends towards a ray that hit its front
+ * or its back: the area lights are numbered first, then the sphere lights
+ * (which emit outward only: their front is the outside). */
+static inline vec3
+light_emitted(const struct scene *s, int light, bool front_face)
+{
+    if (light < s->n_area_lights) {
+        return area_light_emitted(&s->area_lights[light], front_face);
+    }
+    return front_face ? s->sphere_lights[light - s->n_area_lights].radiance : vec3_splat(0);
 }
 
 #endif /* SCENE_H */

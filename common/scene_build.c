@@ -1,9 +1,9 @@
 /*
  * scene_build.c - the builders of the statements that add one element: the
  * camera, the image size, background and ambient, spheres, quads, single
- * triangles and the lights.  Each checks what the field table cannot (a
- * camera's up not along its view, a light of non-zero area), appends to the
- * scene through grow() and records the features the element uses.
+ * triangles and the lights (point, area and sphere lights).  Each checks what the field table
+ * cannot (a camera's up not along its view, a light of non-zero area), appends to the scene through
+ * grow() and records the features the element uses.
  */
 #include "scene_parser.h"
 
@@ -91,7 +91,13 @@ build_camera(struct parser *p, const struct token *kw, struct fields *fs)
         return fail(p, &get(fs, "up")->key, "%s", msg);
     }
     real fov = get(fs, "fov")->num[0];
-    p->scene->camera = (struct camera_desc){.origin = o, .target = t, .up = up, .vfov_deg = fov};
+    const struct field_value *near = get(fs, "near");
+    p->scene->camera = (struct camera_desc){
+        .origin = o,
+        .target = t,
+        .up = up,
+        .vfov_deg = fov,
+        .near = near ? near->num[0] : 0};
     return true;
 }
 
@@ -258,4 +264,23 @@ build_area_light(struct parser *p, const struct token *kw, struct fields *fs)
         return fail(p, kw, "area_light has zero area (edge1 and edge2 are parallel or zero)");
     }
     return add_area_light(p, kw, light);
+}
+
+bool
+build_sphere_light(struct parser *p, const struct token *kw, struct fields *fs)
+{
+    struct scene *s = p->scene;
+    int n = s->n_sphere_lights;
+    struct sphere_light *a = grow(p, kw, s->sphere_lights, n + 1, &p->cap.sphere_lights, sizeof *a);
+    if (!a) {
+        return false;
+    }
+    s->sphere_lights = a;
+    a[s->n_sphere_lights++] = (struct sphere_light){
+        .center = vec_of(fs, "center"),
+        .radius = get(fs, "radius")->num[0],
+        .radiance = vec_of(fs, "radiance"),
+        .loc = loc_of(kw)};
+    use_feature(p, FEAT_SPHERE_LIGHT, kw);
+    return true;
 }

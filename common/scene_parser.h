@@ -82,7 +82,7 @@ struct parser {
     struct src_loc seen[MAX_STATEMENTS]; /* first use of each statement */
 
     struct {
-        int materials, spheres, quads, positions, normals, triangles, points, areas;
+        int materials, spheres, quads, positions, normals, triangles, points, areas, sphere_lights;
     } cap;
 };
 
@@ -151,6 +151,7 @@ bool build_triangle(struct parser *p, const struct token *kw, struct fields *fs)
 bool build_mesh(struct parser *p, const struct token *kw, struct fields *fs);
 bool build_point_light(struct parser *p, const struct token *kw, struct fields *fs);
 bool build_area_light(struct parser *p, const struct token *kw, struct fields *fs);
+bool build_sphere_light(struct parser *p, const struct token *kw, struct fields *fs);
 
 /* --- glTF files (scene_gltf.c, scene_mesh.c, scene_gltf_file.c) ----------- */
 

@@ -1,6 +1,6 @@
 /*
- * light.c - direct light from point lights, and from area lights treated as
- * point lights at their centres.
+ * light.c - direct light from point lights, and from area and sphere lights
+ * treated as point lights at their centres.
  */
 #include "light.h"
 
@@ -44,6 +44,10 @@ direct_irradiance(const struct scene *s, const struct hit *h)
         const struct area_light *light = &s->area_lights[i];
         vec3 center = area_light_center(light);
         e = vec3_add(e, point_irradiance(h, center, area_light_intensity(light, h->p)));
+    }
+    for (int i = 0; i < s->n_sphere_lights; i++) {
+        const struct sphere_light *sphere = &s->sphere_lights[i];
+        e = vec3_add(e, point_irradiance(h, sphere->center, sphere_light_intensity(sphere)));
     }
     return e;
 }

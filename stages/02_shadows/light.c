@@ -1,6 +1,6 @@
 /*
- * light.c - direct light from point lights, and from area lights treated as
- * point lights at their centres, each blocked by anything in between.
+ * light.c - direct light from point lights, and from area and sphere lights
+ * treated as point lights at their centres, each blocked by anything in between.
  */
 #include "light.h"
 
@@ -60,6 +60,13 @@ direct_irradiance(const struct world *w, const struct hit *h, struct stats *st)
         vec3 center = area_light_center(light);
         vec3 irradiance = point_irradiance(h, center, area_light_intensity(light, h->p));
         if (!vec3_is_zero(irradiance) && visible(w, h, center, st)) {
+            e = vec3_add(e, irradiance);
+        }
+    }
+    for (int i = 0; i < s->n_sphere_lights; i++) {
+        const struct sphere_light *sphere = &s->sphere_lights[i];
+        vec3 irradiance = point_irradiance(h, sphere->center, sphere_light_intensity(sphere));
+        if (!vec3_is_zero(irradiance) && visible(w, h, sphere->center, st)) {
             e = vec3_add(e, irradiance);
         }
     }

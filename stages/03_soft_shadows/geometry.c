@@ -37,7 +37,8 @@ struct world
 world_make(const struct scene *s)
 {
     int n_shapes = s->n_spheres + s->n_quads + s->n_triangles;
-    return (struct world){.scene = s, .n_prims = n_shapes + s->n_area_lights};
+    int n_lights = s->n_area_lights + s->n_sphere_lights;
+    return (struct world){.scene = s, .n_prims = n_shapes + n_lights};
 }
 
 /*
@@ -158,6 +159,13 @@ light_quad(const struct area_light *light)
     return (struct quad){light->corner, light->edge1, light->edge2, -1};
 }
 
+/* A sphere light's surface, as a sphere. */
+static struct sphere
+light_sphere(const struct sphere_light *light)
+{
+    return (struct sphere){light->center, light->radius, -1};
+}
+
 /* An area light: its parallelogram, or for a triangle light the half of it
  * where the edge fractions u + v <= 1 (then u, v are barycentric, and
  * corner + u edge1 + v edge2 is the point either way). */
@@ -180,6 +188,9 @@ intersect_prim(const struct scene *s, int prim, ray r, real t_max, struct hit *o
         found = intersect_sphere(&s->spheres[prim], r, t_max, &t);
     } else if (prim < s->n_spheres + s->n_quads) {
         found = intersect_quad(&s->quads[prim - s->n_spheres], r, t_max, &t, &u, &v);
+    } else if (prim >= n_shapes + s->n_area_lights) {
+        struct sphere sphere = light_sphere(&s->sphere_lights[prim - n_shapes - s->n_area_lights]);
+        found = intersect_sphere(&sphere, r, t_max, &t);
     } else if (prim >= n_shapes) {
         found = intersect_light(&s->area_lights[prim - n_shapes], r, t_max, &t, &u, &v);
     } else {
@@ -261,6 +272,10 @@ hit_finish(const struct scene *s, ray r, struct hit *h)
         finish_sphere(&s->spheres[prim], r, h);
     } else if (prim < s->n_spheres + s->n_quads) {
         finish_quad(&s->quads[prim - s->n_spheres], r, h);
+    } else if (prim >= n_shapes + s->n_area_lights) {
+        struct sphere sphere = light_sphere(&s->sphere_lights[prim - n_shapes - s->n_area_lights]);
+        finish_sphere(&sphere, r, h);
+        h->light = prim - n_shapes;
     } else if (prim >= n_shapes) {
         struct quad q = light_quad(&s->area_lights[prim - n_shapes]);
         finish_quad(&q, r, h);

@@ -31,7 +31,7 @@ shade(const struct renderer *renderer, const struct hit *h, struct rng *rng, str
     const struct scene *s = renderer->scene;
     if (h->light >= 0) {
         /* An emitter (one-sided unless two_sided), black as a surface (SCENES.md). */
-        return area_light_emitted(&s->area_lights[h->light], h->front_face);
+        return light_emitted(s, h->light, h->front_face);
     }
     vec3 albedo = diffuse_albedo(&s->materials[h->material]);
     /* Lambert: L = (albedo / pi) E, plus the ambient term albedo * L_ambient. */

@@ -16,7 +16,7 @@
 /* The scene features this stage models (see feature_table.h). */
 #define RENDER_FEATURES \
     (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_AMBIENT) | FEATURE_BIT(FEAT_MESH) \
-     | FEATURE_BIT(FEAT_AREA_LIGHT))
+     | FEATURE_BIT(FEAT_AREA_LIGHT) | FEATURE_BIT(FEAT_SPHERE_LIGHT))
 
 struct renderer {
     const struct scene *scene;

@@ -106,8 +106,16 @@ parallelogram_bounds(vec3 corner, vec3 edge1, vec3 edge2)
     return box_add_point(b, vec3_add(vec3_add(corner, edge1), edge2));
 }
 
+static struct box
+sphere_bounds(vec3 center, real radius)
+{
+    vec3 r = vec3_splat(radius);
+    return (struct box){vec3_sub(center, r), vec3_add(center, r)};
+}
+
 /* Bounds of primitive `prim` in the world's numbering: spheres, quads,
- * triangles, then (when the world counts them) area lights. */
+ * triangles, then (when the world counts them) area lights and sphere
+ * lights. */
 static struct box
 prim_bounds(const struct world *w, int prim)
 {
@@ -115,10 +123,9 @@ prim_bounds(const struct world *w, int prim)
     int first_quad = s->n_spheres;
     int first_triangle = first_quad + s->n_quads;
     int first_light = first_triangle + s->n_triangles;
+    int first_sphere_light = first_light + s->n_area_lights;
     if (prim < first_quad) {
-        const struct sphere *sp = &s->spheres[prim];
-        vec3 r = vec3_splat(sp->radius);
-        return (struct box){vec3_sub(sp->center, r), vec3_add(sp->center, r)};
+        return sphere_bounds(s->spheres[prim].center, s->spheres[prim].radius);
     }
     if (prim < first_triangle) {
         const struct quad *q = &s->quads[prim - first_quad];
@@ -128,6 +135,10 @@ prim_bounds(const struct world *w, int prim)
         const struct triangle *tri = &s->triangles[prim - first_triangle];
         const vec3 *p = s->positions;
         return triangle_bounds(p[tri->v[0]], p[tri->v[1]], p[tri->v[2]]);
+    }
+    if (prim >= first_sphere_light) {
+        const struct sphere_light *sphere = &s->sphere_lights[prim - first_sphere_light];
+        return sphere_bounds(sphere->center, sphere->radius);
     }
     const struct area_light *light = &s->area_lights[prim - first_light];
     return parallelogram_bounds(light->corner, light->edge1, light->edge2);

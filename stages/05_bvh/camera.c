@@ -34,6 +34,7 @@ camera_make(const struct camera_desc *desc, int width, int height)
     cam.up = vec3_cross(cam.right, cam.forward);
     cam.half_height = tan(desc->vfov_deg * PI / 360);
     cam.half_width = cam.half_height * (real)width / (real)height;
+    cam.near = desc->near;
     cam.width = width;
     cam.height = height;
     return cam;
@@ -48,6 +49,8 @@ camera_ray(const struct camera *cam, real film_x, real film_y)
     real x = (2 * film_x / (real)cam->width - 1) * cam->half_width;
     real y = (1 - 2 * film_y / (real)cam->height) * cam->half_height;
     vec3 d = vec3_madd(vec3_madd(cam->forward, cam->right, x), cam->up, y);
-    return (ray){cam->origin, vec3_normalize(d)};
+    /* d reaches depth 1 along forward (right and up are perpendicular to
+     * it), so origin + near d is where the ray crosses the near plane. */
+    return (ray){vec3_madd(cam->origin, d, cam->near), vec3_normalize(d)};
     /* END LAB */
 }

@@ -2,8 +2,8 @@
  * geometry.h - where a ray meets the scene.
  *
  * The scene's shapes are numbered as one list of primitives: spheres first,
- * then quads, then triangles, then the area lights (surfaces too: they are
- * seen and they cast shadows).  Intersection routines compute only the ray
+ * then quads, then triangles, then the area lights and the sphere lights
+ * (surfaces too: they are seen and they cast shadows).  Intersection routines compute only the ray
  * parameter t (and the surface coordinates u, v); hit_finish() computes the
  * point and normals once, for the closest hit.
  */
@@ -28,7 +28,7 @@ struct hit {
     bool front_face; /* the ray arrived on the side the outward normal points to */
     int material;
     real error; /* bound on |computed p - true surface point| (scene units) */
-    int light; /* index of the area light hit, or -1 */
+    int light; /* the light hit (area lights, then sphere lights: light_radiance), or -1 */
 };
 
 /* The shapes a ray can hit: the scene's, numbered as one list. */

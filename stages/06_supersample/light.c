@@ -120,15 +120,77 @@ fold_into_triangle(const struct area_light *light, real *u, real *v)
     }
 }
 
+/* One sample of a sphere light's irradiance at h: a direction drawn from
+ * (u, v) in [0,1)^2 uniformly over the cone of directions the sphere
+ * subtends, and L cos(theta) Omega for it, Omega = 2 pi (1 - cos(theta_max))
+ * the cone's solid angle, sin(theta_max) = r / d at distance d from the
+ * centre (the estimator of E = integral over the cone of L cos(theta) dw
+ * with the direction drawn with density 1 / Omega; Shirley, Wang and
+ * Zimmerman, "Monte Carlo Techniques for Direct Lighting Calculations",
+ * 1996; pbrt 4ed, 6.2.4).  Every sample lands on the half of the sphere the
+ * point sees, unlike points drawn over its whole area.  Zero when h is on or
+ * inside the sphere (its light goes outward), when the direction is below
+ * the surface's horizon, or when it is blocked: *blocked tells which. */
+static vec3
+sphere_sample_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct sphere_light *light,
+    real u,
+    real v,
+    struct stats *st,
+    bool *blocked)
+{
+    vec3 axis = vec3_sub(light->center, h->p);
+    real dist2 = vec3_length2(axis);
+    real radius2 = light->radius * light->radius;
+    *blocked = false;
+    if (!(dist2 > radius2)) {
+        return vec3_splat(0);
+    }
+    real dist = sqrt(dist2);
+    /* 1 - cos(theta_max) as sin^2 / (1 + cos): no cancellation for a small
+     * or distant sphere, whose cos(theta_max) is close to 1. */
+    real sin2_max = radius2 / dist2;
+    real one_minus_cos_max = sin2_max / (1 + sqrt(1 - sin2_max));
+    /* cos(theta) uniform in [cos(theta_max), 1] is uniform in solid angle. */
+    real a = u * one_minus_cos_max; /* 1 - cos(theta) */
+    real cos_theta = 1 - a;
+    real sin_theta = safe_sqrt(a * (2 - a));
+    real phi = 2 * PI * v;
+    struct onb frame = onb_from_normal(vec3_scale(axis, 1 / dist));
+    vec3 local = {sin_theta * cos(phi), sin_theta * sin(phi), cos_theta};
+    vec3 d = onb_to_world(frame, local);
+    real cos_surface = vec3_dot(h->n, d);
+    if (!(cos_surface > 0)) {
+        return vec3_splat(0);
+    }
+    /* The nearer point where the direction meets the sphere. */
+    real t = dist * cos_theta - safe_sqrt(radius2 - dist2 * sin_theta * sin_theta);
+    vec3 y = vec3_madd(h->p, d, t);
+    vec3 through = transmittance(w, h, y, st);
+    *blocked = through.x < 1 || through.y < 1 || through.z < 1;
+    vec3 l = vec3_scale(light->radiance, cos_surface * 2 * PI * one_minus_cos_max);
+    return vec3_mul(through, l);
+}
+
+/* A light the shadow rays sample: an area light or a sphere light (the
+ * other NULL). */
+struct emitter {
+    const struct area_light *area;
+    const struct sphere_light *sphere;
+};
+
 /* The sum of n samples of the light's irradiance, one in each cell of a
- * k x m grid over the light (jittered stratification: each sample is
- * unbiased, so their mean is, and no two crowd together).  *n_blocked
- * counts the samples the light was blocked for. */
+ * k x m grid over [0,1)^2, the light's area or its cone of directions
+ * (jittered stratification: each sample is unbiased, so their mean is, and
+ * no two crowd together).  *n_blocked counts the samples the light was
+ * blocked for. */
 static vec3
 sum_light_samples(
     const struct world *w,
     const struct hit *h,
-    const struct area_light *light,
+    const struct emitter *light,
     int n,
     struct rng *rng,
     struct stats *st,
@@ -140,10 +202,14 @@ sum_light_samples(
     for (int i = 0; i < n; i++) {
         real u = ((real)(i % k) + rng_uniform(rng)) / (real)k;
         real v = ((real)(i / k) + rng_uniform(rng)) / (real)m;
-        fold_into_triangle(light, &u, &v);
         bool blocked;
-        vec3 y = sample_area_light(light, u, v);
-        sum = vec3_add(sum, light_sample_irradiance(w, h, light, y, st, &blocked));
+        if (light->area) {
+            fold_into_triangle(light->area, &u, &v);
+            vec3 y = sample_area_light(light->area, u, v);
+            sum = vec3_add(sum, light_sample_irradiance(w, h, light->area, y, st, &blocked));
+        } else {
+            sum = vec3_add(sum, sphere_sample_irradiance(w, h, light->sphere, u, v, st, &blocked));
+        }
         *n_blocked += blocked;
     }
     return sum;
@@ -212,16 +278,44 @@ unoccluded_irradiance(const struct hit *h, const struct area_light *light)
     return vec3_scale(light->radiance, fabs(sum) / 2);
 }
 
-/* Irradiance from one area light.  Adaptive mode (as classic renderers do):
+/* The unoccluded irradiance of the light at h, in closed form, into *e.
+ * For a sphere all above the surface's horizon (the angle alpha between
+ * the normal and the centre at most 90 degrees - theta_max) it is
+ * L pi sin^2(theta_max) cos(alpha): that of a point of intensity L pi r^2
+ * at the centre.  False for a sphere the horizon cuts, whose closed form is
+ * longer (Snyder, "Area Light Sources for Real-Time Graphics", 1996): the
+ * caller samples it instead. */
+static bool
+unoccluded_closed_form(const struct hit *h, const struct emitter *light, vec3 *e)
+{
+    if (light->area) {
+        *e = unoccluded_irradiance(h, light->area);
+        return true;
+    }
+    const struct sphere_light *sphere = light->sphere;
+    vec3 axis = vec3_sub(sphere->center, h->p);
+    real dist = vec3_length(axis);
+    if (!(dist > sphere->radius)) {
+        *e = vec3_splat(0); /* on or inside the sphere */
+        return true;
+    }
+    real cos_alpha = vec3_dot(h->n, axis) / dist;
+    real sin_max = sphere->radius / dist;
+    *e = point_irradiance(h, sphere->center, sphere_light_intensity(sphere));
+    return cos_alpha >= sin_max || cos_alpha <= -sin_max;
+}
+
+/* Irradiance from one light.  Adaptive mode (as classic renderers do):
  * a few probe rays; if they agree, the point is taken as fully shadowed (0)
- * or fully lit (the exact unoccluded irradiance: no noise at all); otherwise
- * it is in a penumbra and gets more samples, averaged with the probes.  The
- * price is a bias where a thin shadow slips between all the probes. */
+ * or fully lit (the exact unoccluded irradiance: no noise at all, where
+ * there is a closed form); otherwise it is in a penumbra and gets more
+ * samples, averaged with the probes.  The price is a bias where a thin
+ * shadow slips between all the probes. */
 static vec3
-area_light_irradiance(
+light_irradiance(
     const struct world *w,
     const struct hit *h,
-    const struct area_light *light,
+    const struct emitter *light,
     const struct shadow_sampling *sampling,
     struct rng *rng,
     struct stats *st)
@@ -236,13 +330,38 @@ area_light_irradiance(
     if (blocked == probes) {
         return vec3_splat(0);
     }
-    if (blocked == 0) {
-        return unoccluded_irradiance(h, light);
+    vec3 exact;
+    if (blocked == 0 && unoccluded_closed_form(h, light, &exact)) {
+        return exact;
     }
     st->extra[STAT_PENUMBRA]++;
     int more = sampling->adaptive[1];
     sum = vec3_add(sum, sum_light_samples(w, h, light, more, rng, st, &blocked));
     return vec3_scale(sum, 1 / (real)(probes + more));
+}
+
+static vec3
+area_light_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct area_light *light,
+    const struct shadow_sampling *sampling,
+    struct rng *rng,
+    struct stats *st)
+{
+    return light_irradiance(w, h, &(struct emitter){.area = light}, sampling, rng, st);
+}
+
+static vec3
+sphere_light_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct sphere_light *light,
+    const struct shadow_sampling *sampling,
+    struct rng *rng,
+    struct stats *st)
+{
+    return light_irradiance(w, h, &(struct emitter){.sphere = light}, sampling, rng, st);
 }
 
 /* END LAB */
@@ -267,6 +386,10 @@ direct_irradiance(
     for (int i = 0; i < s->n_area_lights; i++) {
         const struct area_light *light = &s->area_lights[i];
         e = vec3_add(e, area_light_irradiance(w, h, light, sampling, rng, st));
+    }
+    for (int i = 0; i < s->n_sphere_lights; i++) {
+        const struct sphere_light *light = &s->sphere_lights[i];
+        e = vec3_add(e, sphere_light_irradiance(w, h, light, sampling, rng, st));
     }
     return e;
 }

@@ -104,7 +104,7 @@ shade(
     const struct scene *s = renderer->scene;
     if (h->light >= 0) {
         /* An emitter (one-sided unless two_sided), black as a surface (SCENES.md). */
-        return area_light_emitted(&s->area_lights[h->light], h->front_face);
+        return light_emitted(s, h->light, h->front_face);
     }
     const struct material *m = &s->materials[h->material];
     vec3 albedo = diffuse_albedo(m, h);

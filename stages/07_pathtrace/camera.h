@@ -13,6 +13,7 @@ struct camera {
     vec3 forward, right, up; /* orthonormal, right-handed: right = forward x up */
     real half_width; /* tan(vfov/2) * width/height: film half-extent at distance 1 */
     real half_height; /* tan(vfov/2) */
+    real near; /* rays start on the plane at this depth along forward */
     int width, height; /* pixels */
 };
 
@@ -22,7 +23,8 @@ struct camera camera_make(const struct camera_desc *desc, int width, int height)
 
 /* The ray through film position (film_x, film_y), in pixels from the top-left
  * corner of the image: pixel (px, py) covers [px, px+1) x [py, py+1), and its
- * centre is (px + 0.5, py + 0.5).  The direction is unit length. */
+ * centre is (px + 0.5, py + 0.5).  The direction is unit length; the
+ * origin is where the ray crosses the near plane (the eye when near is 0). */
 ray camera_ray(const struct camera *cam, real film_x, real film_y);
 
 #endif /* CAMERA_H */

@@ -81,7 +81,7 @@ emitted(const struct renderer *renderer, const struct hit *h, const struct path 
     if (counted_by_nee) {
         return vec3_splat(0);
     }
-    return area_light_emitted(&renderer->scene->area_lights[h->light], h->front_face);
+    return light_emitted(renderer->scene, h->light, h->front_face);
     /* END LAB */
 }
 

@@ -647,7 +647,7 @@ TEST(messages)
         "t.scene:1:50: error: duplicate field 'fov' in 'camera'");
     CHECK_ERROR(
         "camera origin 0 1 3 target 0 1 0 up 0 1 0 fov 40 zoom 2",
-        "t.scene:1:50: error: unknown field 'zoom' in 'camera' (expected origin, target, up or fov)");
+        "t.scene:1:50: error: unknown field 'zoom' in 'camera' (expected origin, target, up, fov or near)");
     CHECK_ERROR(
         "camera origin 0 1 3 up 0 1 0 fov 40",
         "t.scene:1:1: error: missing field 'target' in 'camera'");
@@ -1037,11 +1037,39 @@ TEST(a_leading_byte_order_mark_is_accepted)
         &err));
     CHECK_MSG(err.line == 1 && err.col == 1, "%d:%d %s", err.line, err.col, err.msg);
     CHECK(!load_text("image width 8 height 8\n\xEF\xBB\xBF", "bom.scene", &s, &err));
+/* The camera's near plane and a sphere light, as written; the sphere light
+ * is a feature of its own (stages before 03 light it as a point) and its
+ * intensity as a point is L pi r^2. */
+TEST(near_plane_and_sphere_light)
+{
+    static const char text[] = "camera origin 0 1 3 target 0 1 0 up 0 1 0 fov 40 near 1.5\n"
+                               "image width 8 height 8\n"
+                               "sphere_light center 1 2 3 radius 0.5 radiance 4 2 1\n";
+    struct scene s;
+    struct diag err = {.line = 0};
+    CHECK(load_text(text, "t.scene", &s, &err));
+    CHECK(s.camera.near == (real)1.5);
+    CHECK(s.n_sphere_lights == 1 && (s.features & FEATURE_BIT(FEAT_SPHERE_LIGHT)));
+    if (s.n_sphere_lights == 1) {
+        CHECK(vec_eq(s.sphere_lights[0].center, 1, 2, 3) && s.sphere_lights[0].radius == (real)0.5);
+        CHECK(vec_eq(s.sphere_lights[0].radiance, 4, 2, 1));
+        vec3 i = sphere_light_intensity(&s.sphere_lights[0]);
+        CHECK_NEAR(i.x, 4 * 0.25 * 3.14159265358979, 1e-9);
+        CHECK(s.feature_loc[FEAT_SPHERE_LIGHT].line == 3);
+        CHECK(vec_eq(light_radiance(&s, 0), 4, 2, 1));
+    }
+    scene_free(&s);
+    static const char plain[] = "camera origin 0 1 3 target 0 1 0 up 0 1 0 fov 40\n"
+                                "image width 8 height 8\n";
+    CHECK(load_text(plain, "t.scene", &s, &err));
+    CHECK(s.camera.near == 0 && s.n_sphere_lights == 0);
+    scene_free(&s);
 }
 
 TEST_MAIN(
     TEST_ENTRY(a_leading_byte_order_mark_is_accepted),
     TEST_ENTRY(every_scene_loads),
+    TEST_ENTRY(near_plane_and_sphere_light),
     TEST_ENTRY(cornell_diffuse_point),
     TEST_ENTRY(cornell_diffuse_area),
     TEST_ENTRY(cornell_specular_area),

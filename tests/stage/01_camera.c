@@ -83,9 +83,46 @@ TEST(tilted_camera_keeps_an_orthonormal_frame)
     CHECK_NEAR(angle_between(centre.d, vec3_sub(desc.target, desc.origin)), 0, 1e-6);
 }
 
+/* The near plane by hand: a camera at the origin looking down -z with a 90
+ * degree field of view on a 2 x 2 image has its film's top-left corner in
+ * the direction (-1, 1, -1) (depth 1 along the view); with near 3 the ray
+ * through that corner starts where it crosses z = -3, at (-3, 3, -3).  The
+ * plane is at a depth along the view, so the centre ray starts at (0, 0, -3)
+ * and every ray starts on z = -3.  near 0 (the default) starts at the eye. */
+TEST(near_plane_moves_ray_origins_onto_the_plane)
+{
+    struct camera_desc desc = {
+        .origin = {0, 0, 0},
+        .target = {0, 0, -1},
+        .up = {0, 1, 0},
+        .vfov_deg = 90,
+        .near = 3,
+    };
+    struct camera cam = camera_make(&desc, 2, 2);
+    ray corner = camera_ray(&cam, 0, 0);
+    double inv_sqrt3 = 1 / sqrt(3.0);
+    CHECK_NEAR(corner.o.x, -3, 1e-12);
+    CHECK_NEAR(corner.o.y, 3, 1e-12);
+    CHECK_NEAR(corner.o.z, -3, 1e-12);
+    CHECK_NEAR(corner.d.x, -inv_sqrt3, 1e-6);
+    CHECK_NEAR(corner.d.y, inv_sqrt3, 1e-6);
+    CHECK_NEAR(corner.d.z, -inv_sqrt3, 1e-6);
+    ray centre = camera_ray(&cam, 1, 1);
+    CHECK_NEAR(centre.o.x, 0, 1e-12);
+    CHECK_NEAR(centre.o.y, 0, 1e-12);
+    CHECK_NEAR(centre.o.z, -3, 1e-12);
+    ray other = camera_ray(&cam, 1.7, 0.2);
+    CHECK_NEAR(other.o.z, -3, 1e-12);
+    desc.near = 0;
+    cam = camera_make(&desc, 2, 2);
+    corner = camera_ray(&cam, 0, 0);
+    CHECK(corner.o.x == 0 && corner.o.y == 0 && corner.o.z == 0);
+}
+
 TEST_MAIN(
     TEST_ENTRY(centre_ray_is_forward),
     TEST_ENTRY(vertical_fov_at_top_and_bottom_edges),
     TEST_ENTRY(horizontal_extent_follows_aspect_ratio),
     TEST_ENTRY(corner_rays_match_the_pinhole_model),
-    TEST_ENTRY(tilted_camera_keeps_an_orthonormal_frame))
+    TEST_ENTRY(tilted_camera_keeps_an_orthonormal_frame),
+    TEST_ENTRY(near_plane_moves_ray_origins_onto_the_plane))
