@@ -8,7 +8,9 @@
 #   make test       every test of common/ and of every stage; last line "N passed, N failed"
 #   make sanitize   the same tests built with AddressSanitizer + UBSan (build/sanitize/)
 #   make fuzz       every parser under libFuzzer for FUZZ_SECONDS (60) each (clang)
-#   make demo       render the showcase scenes through the stages into out/
+#   make demo       render the showcase scenes through the stages into out/ (and
+#                   the mesh scenes through the stages with a BVH)
+#   make gallery    scenes/README.md: every scene, its first correct stage and 07
 #   make config     what the build found (OpenEXR, tinygltf)
 #   make lab STAGE=05 OUT=dir   a lab handout; make grade LAB=dir grades one
 #   make diffs      docs/diffs/*.diff and the diff table; make branches OUT=dir
@@ -68,6 +70,12 @@ config:
 
 DEMO_SCENES := scenes/cornell_diffuse_point.scene scenes/cornell_diffuse_area.scene \
 	scenes/cornell_specular_area.scene $(wildcard scenes/showcase*.scene)
+# Scenes with meshes, through the stages with a BVH: the ones before it test
+# every triangle for every ray (correct, but minutes to hours at full size).
+ifeq ($(TINYGLTF),1)
+DEMO_MESH_SCENES := scenes/bunny_cornell.scene scenes/glass_bunny.scene scenes/buddha.scene
+endif
+BVH_STAGES := $(filter-out 01_% 02_% 03_% 04_%,$(STAGES))
 
 demo: all
 	@mkdir -p out
@@ -78,7 +86,19 @@ demo: all
 			$(BUILDROOT)$$s/render -q -o out/$${s}_$$name.png $$scene || exit 1; \
 		done; \
 	done
-	@echo "wrote out/*.png"
+	@for s in $(BVH_STAGES); do \
+		for scene in $(DEMO_MESH_SCENES); do \
+			name=$$(basename $$scene .scene); \
+			echo "$$s: $$name"; \
+			$(BUILDROOT)$$s/render -q -o out/$${s}_$$name.png $$scene || exit 1; \
+		done; \
+	done
+	@echo "wrote out/*.png$(if $(DEMO_MESH_SCENES), (the mesh scenes from 05_bvh on), (no mesh scenes: no glTF support, apt-get install libtinygltf-dev))"
+
+# The gallery of every scene (scenes/README.md, scenes/gallery/): each from
+# the first stage that renders it correctly and from 07, with render times.
+gallery: all
+	@scenes/make-gallery.sh
 
 # make trade: speed against accuracy for every stage -> docs/trade/ (< 15 min
 # on 2 cores); make trade QUICK=1: reduced sweep -> build/trade/quick/ (< 1 min).
@@ -115,4 +135,4 @@ check-labs: all
 clean:
 	rm -rf build
 
-.PHONY: all models common tools test sanitize fuzz config demo trade bench docs-images clean lab grade diffs branches check-labs $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config demo gallery trade bench docs-images clean lab grade diffs branches check-labs $(STAGES)

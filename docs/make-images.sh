@@ -164,6 +164,7 @@ images_05() {
     render 05_bvh 05_bvh_showcase $showcase
     render 05_bvh 05_bvh_cornell_specular_area $specular
     render 05_bvh 05_bvh_terrain "$(terrain_scene)"
+    render 05_bvh 05_bvh_bunny_cornell scenes/bunny_cornell.scene # the README's mesh
 }
 
 images_06() {
