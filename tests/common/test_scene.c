@@ -1056,7 +1056,8 @@ TEST(near_plane_and_sphere_light)
         vec3 i = sphere_light_intensity(&s.sphere_lights[0]);
         CHECK_NEAR(i.x, 4 * 0.25 * 3.14159265358979, 1e-9);
         CHECK(s.feature_loc[FEAT_SPHERE_LIGHT].line == 3);
-        CHECK(vec_eq(light_radiance(&s, 0), 4, 2, 1));
+        CHECK(vec_eq(light_emitted(&s, 0, true), 4, 2, 1));
+        CHECK(vec_eq(light_emitted(&s, 0, false), 0, 0, 0));
     }
     scene_free(&s);
     static const char plain[] = "camera origin 0 1 3 target 0 1 0 up 0 1 0 fov 40\n"
