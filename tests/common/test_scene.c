@@ -1037,6 +1037,8 @@ TEST(a_leading_byte_order_mark_is_accepted)
         &err));
     CHECK_MSG(err.line == 1 && err.col == 1, "%d:%d %s", err.line, err.col, err.msg);
     CHECK(!load_text("image width 8 height 8\n\xEF\xBB\xBF", "bom.scene", &s, &err));
+}
+
 /* The camera's near plane and a sphere light, as written; the sphere light
  * is a feature of its own (stages before 03 light it as a point) and its
  * intensity as a point is L pi r^2. */
