@@ -6,7 +6,9 @@
 #   make models     build/models/happy_res3_subdiv16.glb, the 1.08M-triangle
 #                   Buddha, made from scenes/models/happy_res3.glb
 #   make test       every test of common/ and of every stage; last line "N passed, N failed"
-#   make sanitize   the same tests built with AddressSanitizer + UBSan (build/sanitize/)
+#   make test STAGE=03   only stage 03's tests (also STAGE=03_soft_shadows)
+#   make sanitize   the same tests built with AddressSanitizer + UBSan (build/sanitize/);
+#                   make sanitize STAGE=03 for one stage
 #   make fuzz       every parser under libFuzzer for FUZZ_SECONDS (60) each (clang)
 #   make demo       render the showcase scenes through the stages into out/ (and
 #                   the mesh scenes through the stages with a BVH)
@@ -18,7 +20,7 @@
 #   make clean
 # Knobs: REAL=float (single precision, build/float/), CFLAGS=..., WERROR=1,
 # OPENEXR=0|1, TINYGLTF=0|1.  See common/config.mk.
-ROOT := $(abspath .)
+override ROOT := $(abspath .)
 include common/config.mk
 
 STAGES := $(notdir $(wildcard stages/[0-9][0-9]_*))
@@ -41,19 +43,11 @@ $(STAGES): common
 tools: common
 	@$(MAKE) --no-print-directory -C tests tools
 
-# Every test program prints its own results; the last line is the sum.
-test: all
-	@mkdir -p $(LOGS)
-	@$(MAKE) --no-print-directory -C tests common 2>&1 | tee $(LOGS)/common.log
-	@for s in $(STAGES); do \
-		$(MAKE) --no-print-directory -C stages/$$s test 2>&1 | tee $(LOGS)/$$s.log; \
-	done
-	@tests/lab/test-lab-tools.sh 2>&1 | tee $(LOGS)/lab-tools.log
-	@tests/lab/check-diffs.sh 2>&1 | tee $(LOGS)/diffs.log
-	@tests/lab/check-labs.sh --quick 2>&1 | tee $(LOGS)/labs.log
-	@$(MAKE) --no-print-directory -C tests/fuzz replay 2>&1 | tee $(LOGS)/fuzz-replay.log
-	@tests/harness/sum-results.sh $(LOGS)/common.log $(foreach s,$(STAGES),$(LOGS)/$(s).log) \
-		$(LOGS)/lab-tools.log $(LOGS)/diffs.log $(LOGS)/labs.log $(LOGS)/fuzz-replay.log
+# Every test program prints its own results; harness/test-all.sh runs the
+# parts, prints one line per part and the total last, and exits non-zero when
+# anything failed.  STAGE=NN (or a stage's name) runs only that stage's tests.
+test:
+	@MAKE='$(MAKE)' tests/harness/test-all.sh --logs $(LOGS) $(if $(STAGE),--stage '$(STAGE)')
 
 sanitize:
 	@$(MAKE) --no-print-directory SANITIZE=1 test

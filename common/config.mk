@@ -52,8 +52,10 @@ SAN_FLAGS := -O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-
 VARIANT := $(VARIANT)fuzz/
 endif
 
-BUILDROOT := $(ROOT)/build/$(VARIANT)
-COMMON_LIB := $(BUILDROOT)common/libcommon.a
+# Where things are built follows from the knobs above alone: a variable of
+# the same name on the command line (or from an enclosing make) cannot move it.
+override BUILDROOT := $(ROOT)/build/$(VARIANT)
+override COMMON_LIB := $(BUILDROOT)common/libcommon.a
 
 OPENEXR ?= $(shell $(PKG_CONFIG) --exists OpenEXR 2>/dev/null && echo 1 || echo 0)
 ifeq ($(OPENEXR),1)
@@ -74,3 +76,16 @@ ALL_CPPFLAGS = $(BASE_CPPFLAGS) $(CPPFLAGS)
 ALL_CFLAGS = $(WARN) $(CFLAGS) $(SAN_FLAGS)
 ALL_LDFLAGS = $(LDFLAGS) $(SAN_FLAGS) -pthread
 ALL_LDLIBS = $(EXR_LDLIBS) $(LINK_LDLIBS) $(LDLIBS) -lm
+
+# Flags stamps.  $(call flags_stamp,DIR,FLAGS) makes DIR/flags.stamp hold
+# FLAGS (the compilers and flags that build DIR's files) and names it; the
+# file is rewritten only when FLAGS differ from what it holds, so objects that
+# depend on it are rebuilt exactly when their flags change, and a build
+# directory never holds objects of two flag sets.  -Werror is left out: it
+# changes no object (`make WERROR=1` recompiles only what is out of date);
+# the project's path is written as @ROOT@, so that copies of one tree that
+# share a build directory (the lab handouts' common core) agree.
+flags_stamp = $(strip $(if $(call same_text,$(file <$(1)/flags.stamp),$(call stamp_text,$(2))),,\
+    $(shell mkdir -p '$(1)')$(file >$(1)/flags.stamp,$(call stamp_text,$(2))))$(1)/flags.stamp)
+stamp_text = $(strip $(filter-out -Werror,$(subst $(ROOT),@ROOT@,$(1))))
+same_text = $(and $(findstring x$(1)x,x$(2)x),$(findstring x$(2)x,x$(1)x))

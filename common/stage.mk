@@ -1,19 +1,23 @@
 # stage.mk - the rules every stage Makefile includes after setting SRCS.
-# The stage's name comes from its directory, so no stage file names itself.
-ROOT := $(abspath ../..)
+# The stage's name and build directory come from its directory alone, so no
+# stage file names itself and no STAGE= or OUT= of a caller can redirect the
+# build (`override`).
+override ROOT := $(abspath ../..)
 include $(ROOT)/common/config.mk
 
-STAGE := $(notdir $(CURDIR))
-OUT := $(BUILDROOT)$(STAGE)
-OBJS := $(SRCS:%.c=$(OUT)/%.o)
-STAGE_CPPFLAGS := -DSTAGE_NAME=\"$(STAGE)\"
+override STAGE := $(notdir $(CURDIR))
+override OUT := $(BUILDROOT)$(STAGE)
+override OBJS := $(SRCS:%.c=$(OUT)/%.o)
+override STAGE_CPPFLAGS := -DSTAGE_NAME=\"$(STAGE)\"
+FLAGS_STAMP := $(call flags_stamp,$(OUT),$(CC) $(ALL_CPPFLAGS) $(STAGE_CPPFLAGS) $(ALL_CFLAGS) \
+    | $(LINK) $(ALL_LDFLAGS) $(ALL_LDLIBS) | $(SRCS))
 
 all: $(OUT)/render
 
-$(OUT)/render: $(OBJS) $(COMMON_LIB)
+$(OUT)/render: $(OBJS) $(COMMON_LIB) $(FLAGS_STAMP)
 	$(LINK) $(ALL_LDFLAGS) -o $@ $(OBJS) $(COMMON_LIB) $(ALL_LDLIBS)
 
-$(OUT)/%.o: %.c
+$(OUT)/%.o: %.c $(FLAGS_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CPPFLAGS) $(STAGE_CPPFLAGS) $(ALL_CFLAGS) -MMD -MP -c -o $@ $<
 
@@ -22,10 +26,10 @@ $(OUT)/%.o: %.c
 $(COMMON_LIB): FORCE
 	@$(MAKE) --no-print-directory -C $(ROOT)/common
 
-# The double build's tests also run the float build of the stage (the
-# extremes battery compares the two).
-test: all
-	@$(if $(filter double0,$(REAL)$(SANITIZE)),$(MAKE) --no-print-directory REAL=float all)
+# The stage's tests (tests/Makefile builds the stage, in double and float,
+# and its test programs, then runs them; a program that does not build
+# counts as failed).
+test:
 	@$(MAKE) --no-print-directory -C $(ROOT)/tests stage STAGE=$(STAGE)
 
 clean:

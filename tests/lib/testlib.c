@@ -1,6 +1,8 @@
 /* testlib.c - see testlib.h. */
 #include "testlib.h"
 
+#include "vec3.h"
+
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
@@ -22,19 +24,59 @@ test_root(void)
     return root && root[0] ? root : PROJECT_ROOT;
 }
 
+/* Remove path and, for a directory, everything below it (no symbolic link
+ * is followed: unlink removes the link itself). */
+static void
+remove_tree(const char *path)
+{
+    DIR *d = opendir(path);
+    if (d) {
+        struct dirent *e;
+        while ((e = readdir(d)) != NULL) {
+            if (strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0) {
+                continue;
+            }
+            char child[2048];
+            snprintf(child, sizeof child, "%s/%s", path, e->d_name);
+            struct stat st;
+            if (lstat(child, &st) == 0 && S_ISDIR(st.st_mode)) {
+                remove_tree(child);
+            } else {
+                unlink(child);
+            }
+        }
+        closedir(d);
+    }
+    remove(path);
+}
+
+static char tmpdir_path[1024];
+
+/* The private directory goes when the program ends normally (tests that
+ * fail end normally too).  A crash or a signal skips this: the runner
+ * (harness/run-tests.sh) gives each program a TMPDIR of its own and removes
+ * that whatever happened. */
+static void
+remove_tmpdir(void)
+{
+    if (tmpdir_path[0]) {
+        remove_tree(tmpdir_path);
+    }
+}
+
 const char *
 test_tmpdir(void)
 {
-    static char dir[1024];
-    if (!dir[0]) {
+    if (!tmpdir_path[0]) {
         const char *base = getenv("TMPDIR");
-        snprintf(dir, sizeof dir, "%s/stagelight-test-XXXXXX", base && base[0] ? base : "/tmp");
-        if (!mkdtemp(dir)) {
+        snprintf(tmpdir_path, sizeof tmpdir_path, "%s/stagelight-test-XXXXXX", base && base[0] ? base : "/tmp");
+        if (!mkdtemp(tmpdir_path)) {
             perror("mkdtemp");
             exit(2);
         }
+        atexit(remove_tmpdir);
     }
-    return dir;
+    return tmpdir_path;
 }
 
 /* Paths handed out stay valid until the program ends: each distinct path
@@ -240,6 +282,35 @@ test_wait(int pid)
     return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
 }
 
+/* Whether the program at path is the render of stage `stage` in the given
+ * precision: its --version line reads "render (STAGE) ..., P precision".
+ * A binary of another stage or precision ends the test program (exit 3,
+ * no result line), which the runner reports as a failure by name. */
+static void
+require_stage_binary(const char *variable, const char *path, const char *precision)
+{
+    const char *stage = getenv("STAGE");
+    char output[512];
+    const char *argv[] = {path, "--version", NULL};
+    int status = test_run(argv, output, sizeof output);
+    char expect_stage[256];
+    char expect_precision[64];
+    snprintf(expect_stage, sizeof expect_stage, "render (%s) ", stage ? stage : "");
+    snprintf(expect_precision, sizeof expect_precision, " %s precision", precision);
+    if (!stage || !stage[0]) {
+        printf("testlib: %s is given but STAGE is not: cannot check that %s is the stage's render\n",
+            variable, path);
+    } else if (status == 0 && strncmp(output, expect_stage, strlen(expect_stage)) == 0 &&
+        strstr(output, expect_precision) != NULL) {
+        return;
+    } else {
+        printf("testlib: %s=%s is not the %s-precision render of stage %s (exit %d, --version: %s)\n",
+            variable, path, precision, stage, status, output);
+    }
+    fflush(stdout);
+    exit(3);
+}
+
 const char *
 test_tool_binary(const char *name)
 {
@@ -269,8 +340,31 @@ test_run_tool(const char *name, const char *const args[], char *output, size_t c
 const char *
 test_render_binary(void)
 {
+    static bool checked;
     const char *render = getenv("RENDER");
-    return render && render[0] ? render : NULL;
+    if (!render || !render[0]) {
+        return NULL;
+    }
+    if (!checked) {
+        checked = true;
+        require_stage_binary("RENDER", render, sizeof(real) == sizeof(float) ? "float" : "double");
+    }
+    return render;
+}
+
+const char *
+test_render_float_binary(void)
+{
+    static bool checked;
+    const char *render = getenv("RENDER_FLOAT");
+    if (!render || !render[0] || !test_file_exists(render)) {
+        return NULL;
+    }
+    if (!checked) {
+        checked = true;
+        require_stage_binary("RENDER_FLOAT", render, "float");
+    }
+    return render;
 }
 
 int

@@ -13,7 +13,8 @@
 /* The project root (environment ROOT, else the compiled-in path). */
 const char *test_root(void);
 
-/* A fresh private directory for this test program (created on first use). */
+/* A fresh private directory for this test program (created on first use,
+ * removed with everything in it when the program exits). */
 const char *test_tmpdir(void);
 
 /* tmpdir/name; the string stays valid until the program ends. */
@@ -61,8 +62,15 @@ const char *test_tool_binary(const char *name);
  * program left out), as test_run does. */
 int test_run_tool(const char *name, const char *const args[], char *output, size_t cap);
 
-/* Path of the stage's render binary (environment RENDER); NULL if unset. */
+/* Path of the stage's render binary (environment RENDER); NULL if unset.
+ * The first call checks that it is the render of the stage the runner names
+ * (environment STAGE) in this build's precision, and ends the program with
+ * exit status 3 and no result line if it is not. */
 const char *test_render_binary(void);
+
+/* The same stage built with REAL=float (environment RENDER_FLOAT), checked
+ * the same way; NULL if unset or missing. */
+const char *test_render_float_binary(void);
 
 /* Run the stage's binary: render -q [args...] scene.  args is
  * NULL-terminated and may be NULL. */

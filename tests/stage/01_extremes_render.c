@@ -99,10 +99,8 @@ init_precisions(void)
     precisions[0] = (struct precision){"float", test_render_binary(), 0x1p-23};
     precisions[1] = (struct precision){"double", NULL, 0x1p-52};
 #else
-    const char *f = getenv("RENDER_FLOAT");
     precisions[0] = (struct precision){"double", test_render_binary(), 0x1p-52};
-    precisions[1] =
-        (struct precision){"float", f && f[0] && test_file_exists(f) ? f : NULL, 0x1p-23};
+    precisions[1] = (struct precision){"float", test_render_float_binary(), 0x1p-23};
 #endif
 }
 
