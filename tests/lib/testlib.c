@@ -6,11 +6,13 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #ifndef PROJECT_ROOT
@@ -69,7 +71,11 @@ test_tmpdir(void)
 {
     if (!tmpdir_path[0]) {
         const char *base = getenv("TMPDIR");
-        snprintf(tmpdir_path, sizeof tmpdir_path, "%s/stagelight-test-XXXXXX", base && base[0] ? base : "/tmp");
+        snprintf(
+            tmpdir_path,
+            sizeof tmpdir_path,
+            "%s/stagelight-test-XXXXXX",
+            base && base[0] ? base : "/tmp");
         if (!mkdtemp(tmpdir_path)) {
             perror("mkdtemp");
             exit(2);
@@ -213,11 +219,49 @@ test_read_file(const char *path, size_t *len)
     return buf;
 }
 
+/* The exit status of a wait status: 128 + signal when killed. */
+static int
+exit_code(int status)
+{
+    if (WIFEXITED(status)) {
+        return WEXITSTATUS(status);
+    }
+    return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+}
+
+/* The one process runner of the tests (test_spawn, test_wait): every test
+ * that runs a program goes through here. */
 int
-test_run(const char *const argv[], char *output, size_t cap)
+test_run_signalled(
+    const char *const argv[],
+    double delay,
+    int signo,
+    bool *was_running,
+    char *output,
+    size_t cap)
 {
     const char *capture = test_tmp_path("run-output.txt");
-    int status = test_wait(test_spawn(argv, capture));
+    int pid = test_spawn(argv, capture);
+    int status = -1;
+    bool running = pid > 0;
+    if (running && signo > 0) {
+        struct timespec wait = {(time_t)delay, (long)((delay - (double)(time_t)delay) * 1e9)};
+        while (nanosleep(&wait, &wait) != 0 && errno == EINTR) {
+        }
+        int raw = 0;
+        running = waitpid((pid_t)pid, &raw, WNOHANG) == 0;
+        if (running) {
+            kill((pid_t)pid, signo);
+        } else {
+            status = exit_code(raw);
+        }
+        if (was_running) {
+            *was_running = running;
+        }
+    }
+    if (running) {
+        status = test_wait(pid);
+    }
     if (output && cap > 0) {
         size_t len = 0;
         char *text = test_read_file(capture, &len);
@@ -227,7 +271,14 @@ test_run(const char *const argv[], char *output, size_t cap)
             free(text);
         }
     }
+    remove(capture);
     return status;
+}
+
+int
+test_run(const char *const argv[], char *output, size_t cap)
+{
+    return test_run_signalled(argv, 0, 0, NULL, output, cap);
 }
 
 int
@@ -258,6 +309,11 @@ test_spawn(const char *const argv[], const char *capture)
         dup2(in, 0);
         dup2(out, 1);
         dup2(out, 2);
+        /* The signals tests send get their default disposition, whatever
+         * the shell that started this test ignores (background jobs ignore
+         * SIGINT). */
+        signal(SIGINT, SIG_DFL);
+        signal(SIGTERM, SIG_DFL);
         execv(argv[0], (char *const *)argv);
         _exit(127);
     }
@@ -276,39 +332,7 @@ test_wait(int pid)
             return -1;
         }
     }
-    if (WIFEXITED(status)) {
-        return WEXITSTATUS(status);
-    }
-    return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
-}
-
-/* Whether the program at path is the render of stage `stage` in the given
- * precision: its --version line reads "render (STAGE) ..., P precision".
- * A binary of another stage or precision ends the test program (exit 3,
- * no result line), which the runner reports as a failure by name. */
-static void
-require_stage_binary(const char *variable, const char *path, const char *precision)
-{
-    const char *stage = getenv("STAGE");
-    char output[512];
-    const char *argv[] = {path, "--version", NULL};
-    int status = test_run(argv, output, sizeof output);
-    char expect_stage[256];
-    char expect_precision[64];
-    snprintf(expect_stage, sizeof expect_stage, "render (%s) ", stage ? stage : "");
-    snprintf(expect_precision, sizeof expect_precision, " %s precision", precision);
-    if (!stage || !stage[0]) {
-        printf("testlib: %s is given but STAGE is not: cannot check that %s is the stage's render\n",
-            variable, path);
-    } else if (status == 0 && strncmp(output, expect_stage, strlen(expect_stage)) == 0 &&
-        strstr(output, expect_precision) != NULL) {
-        return;
-    } else {
-        printf("testlib: %s=%s is not the %s-precision render of stage %s (exit %d, --version: %s)\n",
-            variable, path, precision, stage, status, output);
-    }
-    fflush(stdout);
-    exit(3);
+    return exit_code(status);
 }
 
 const char *

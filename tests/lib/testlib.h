@@ -53,6 +53,17 @@ int test_spawn(const char *const argv[], const char *capture);
  * when killed, -1 on failure. */
 int test_wait(int pid);
 
+/* test_run, but sends signal signo to the program `delay` seconds after it
+ * started if it is still running then (*was_running says whether it was;
+ * may be NULL).  The program starts with signo's default disposition. */
+int test_run_signalled(
+    const char *const argv[],
+    double delay,
+    int signo,
+    bool *was_running,
+    char *output,
+    size_t cap);
+
 /* Path of a command-line tool of tests/tools/ (compare, merge, ...):
  * $BUILDROOT/tools/NAME (tests/Makefile exports BUILDROOT), else
  * root/build/tools/NAME.  The string stays valid until the program ends. */

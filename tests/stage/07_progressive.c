@@ -7,8 +7,8 @@
  *    at least 1, no pass begun after the budget ran out (the render took
  *    at least 0.5 s but stopped), and exactly spp camera rays per pixel:
  *    a time budget never cuts a pass.
- *  - SIGINT during a long render (fork and exec the binary, wait 0.5 s,
- *    kill(pid, SIGINT), waitpid): exit status 0; the output exists and is a
+ *  - SIGINT during a long render (testlib's runner: start the binary, wait,
+ *    send SIGINT, wait for it): exit status 0; the output exists and is a
  *    valid PFM; --stats reports the complete passes, 1 <= spp < requested,
  *    and the camera rays are those passes plus at most one partial pass.
  *    The image holds exactly those passes: its image mean matches Mitsuba's
@@ -19,13 +19,8 @@
  *    "on any failure no output file is created").
  *  - nan_pixels is 0 in every run that writes an image.
  */
-#include <errno.h>
-#include <fcntl.h>
 #include <signal.h>
 #include <stdlib.h>
-#include <sys/wait.h>
-#include <time.h>
-#include <unistd.h>
 
 #include "check.h"
 #include "metrics.h"
@@ -123,52 +118,18 @@ TEST(time_budget_stops_after_whole_passes)
     image_free(&img);
 }
 
-/* Run argv, send SIGINT after `delay` seconds, and return its exit status
- * (128 + signal if it died of one; -1 if it could not run).  *running
- * tells whether it was still running when the signal was sent. */
+/* Run argv, send SIGINT after `delay` seconds (testlib's runner) and
+ * return its exit status; *running tells whether it was still running when
+ * the signal was sent.  Its output is printed. */
 static int
 run_and_interrupt(const char *const argv[], double delay, bool *running)
 {
-    const char *log = test_tmp_path("interrupted.log");
-    fflush(stdout);
-    pid_t pid = fork();
-    if (pid < 0) {
-        return -1;
+    char output[4096];
+    int status = test_run_signalled(argv, delay, SIGINT, running, output, sizeof output);
+    if (output[0]) {
+        printf("its output: %s", output);
     }
-    if (pid == 0) {
-        int in = open("/dev/null", O_RDONLY);
-        int out = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-        if (in < 0 || out < 0) {
-            _exit(127);
-        }
-        dup2(in, 0);
-        dup2(out, 1);
-        dup2(out, 2);
-        execv(argv[0], (char *const *)argv);
-        _exit(127);
-    }
-    struct timespec wait = {(time_t)delay, (long)((delay - (double)(time_t)delay) * 1e9)};
-    while (nanosleep(&wait, &wait) != 0 && errno == EINTR) {
-    }
-    int status = 0;
-    *running = waitpid(pid, &status, WNOHANG) == 0;
-    if (*running) {
-        kill(pid, SIGINT);
-        while (waitpid(pid, &status, 0) < 0) {
-            if (errno != EINTR) {
-                return -1;
-            }
-        }
-    }
-    char *text = test_read_file(log, NULL);
-    if (text && text[0]) {
-        printf("its output: %s", text);
-    }
-    free(text);
-    if (WIFEXITED(status)) {
-        return WEXITSTATUS(status);
-    }
-    return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+    return status;
 }
 
 TEST(interrupt_keeps_the_complete_passes)
