@@ -34,31 +34,6 @@
 
 /* --- helpers -------------------------------------------------------------- */
 
-static bool
-write_bytes(const char *path, const void *data, size_t len)
-{
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        return false;
-    }
-    bool ok = fwrite(data, 1, len, f) == len;
-    return fclose(f) == 0 && ok;
-}
-
-static void
-put_u32(unsigned char *p, uint32_t v)
-{
-    for (int i = 0; i < 4; i++) {
-        p[i] = (unsigned char)(v >> (8 * i));
-    }
-}
-
-static uint32_t
-get_u32(const unsigned char *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
 /* A .glb of json (padded here) and bin (a multiple of 4 bytes, or NULL). */
 static bool
 write_glb(const char *path, const char *json, const unsigned char *bin, size_t bin_len)
@@ -70,18 +45,18 @@ write_glb(const char *path, const char *json, const unsigned char *bin, size_t b
         return false;
     }
     memcpy(b, "glTF", 4);
-    put_u32(b + 4, 2);
-    put_u32(b + 8, (uint32_t)total);
-    put_u32(b + 12, (uint32_t)json_len);
+    test_put_le32(b + 4, 2);
+    test_put_le32(b + 8, (uint32_t)total);
+    test_put_le32(b + 12, (uint32_t)json_len);
     memcpy(b + 16, "JSON", 4);
     memset(b + 20, ' ', json_len);
     memcpy(b + 20, json, strlen(json));
     if (bin) {
-        put_u32(b + 20 + json_len, (uint32_t)bin_len);
+        test_put_le32(b + 20 + json_len, (uint32_t)bin_len);
         memcpy(b + 24 + json_len, "BIN\0", 4);
         memcpy(b + 28 + json_len, bin, bin_len);
     }
-    bool ok = write_bytes(path, b, total);
+    bool ok = test_write_bytes(path, b, total);
     free(b);
     return ok;
 }
@@ -245,7 +220,7 @@ tri_bin(unsigned char bin[TRI_BIN_LEN])
     for (int i = 0; i < 9; i++) {
         uint32_t bits;
         memcpy(&bits, &pos[i], 4);
-        put_u32(bin + 4 * i, bits);
+        test_put_le32(bin + 4 * i, bits);
     }
     for (int i = 0; i < 3; i++) {
         bin[36 + 2 * i] = (unsigned char)i;
@@ -782,7 +757,7 @@ TEST(generated_buddha)
     size_t len = 0;
     char *bytes = test_read_file(path, &len);
     // The JSON chunk starts 20 bytes in; the credit is in asset.copyright.
-    size_t json_len = bytes && len >= 20 ? get_u32((unsigned char *)bytes + 12) : 0;
+    size_t json_len = bytes && len >= 20 ? test_get_le32((unsigned char *)bytes + 12) : 0;
     bool credited = false;
     if (json_len > 0 && 20 + json_len <= len) {
         bytes[20 + json_len - 1] = '\0';  // the last byte is padding
@@ -801,12 +776,12 @@ box_matrix_applied(const char *path, const struct gltf_mesh *m)
 {
     size_t len;
     unsigned char *bytes = (unsigned char *)test_read_file(path, &len);
-    size_t start = bytes ? 20 + get_u32(bytes + 12) + 8 + 288 : 0;
+    size_t start = bytes ? 20 + test_get_le32(bytes + 12) + 8 + 288 : 0;
     bool ok = bytes && m->n_vertices == 24 && start + 24 * 12 <= len;
     for (size_t v = 0; ok && v < 24; v++) {
         float raw[3];
         for (int k = 0; k < 3; k++) {
-            uint32_t bits = get_u32(bytes + start + 12 * v + 4 * (size_t)k);
+            uint32_t bits = test_get_le32(bytes + start + 12 * v + 4 * (size_t)k);
             memcpy(&raw[k], &bits, 4);
         }
         const double *p = m->positions + 3 * v;
@@ -898,7 +873,7 @@ TEST(empty_and_garbage)
 {
     REQUIRE_GLTF();
     const char *empty = test_tmp_path("empty.glb");
-    CHECK(write_bytes(empty, "", 0));
+    CHECK(test_write_bytes(empty, "", 0));
     check_refused(empty, "empty");
     struct rng r = rng_make(11, 0);
     unsigned char junk[4096];
@@ -911,7 +886,7 @@ TEST(empty_and_garbage)
             memcpy(junk, "glTF", 4);
         }
         const char *path = test_tmp_path(i % 2 ? "junk.glb" : "junk.gltf");
-        CHECK(write_bytes(path, junk, len));
+        CHECK(test_write_bytes(path, junk, len));
         check_refused(path, NULL);
     }
     check_refused(test_tmp_path("does-not-exist.glb"), "cannot open");
@@ -929,15 +904,15 @@ TEST(wrong_magic)
     }
     bytes[1] = 'L';
     const char *path = test_tmp_path("magic.glb");
-    CHECK(write_bytes(path, bytes, len));
+    CHECK(test_write_bytes(path, bytes, len));
     check_refused(path, "glTF");
     path = test_tmp_path("magic.gltf");
-    CHECK(write_bytes(path, bytes, len));
+    CHECK(test_write_bytes(path, bytes, len));
     check_refused(path, NULL);
     memcpy(bytes, "glTF", 4);
-    put_u32((unsigned char *)bytes + 4, 1);
+    test_put_le32((unsigned char *)bytes + 4, 1);
     path = test_tmp_path("version.glb");
-    CHECK(write_bytes(path, bytes, len));
+    CHECK(test_write_bytes(path, bytes, len));
     check_refused(path, "version");
     free(bytes);
 }
@@ -958,7 +933,7 @@ TEST(truncated_glb)
         free(bytes);
         return;
     }
-    size_t json_end = 20 + get_u32(bytes + 12);
+    size_t json_end = 20 + test_get_le32(bytes + 12);
     size_t cuts[] = {
         1,
         4,
@@ -977,13 +952,13 @@ TEST(truncated_glb)
         len - 1};
     const char *path = test_tmp_path("cut.glb");
     for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
-        CHECK(write_bytes(path, bytes, cuts[i]));
+        CHECK(test_write_bytes(path, bytes, cuts[i]));
         check_refused(path, NULL);
         if (cuts[i] >= 12) {
-            put_u32(bytes + 8, (uint32_t)cuts[i]);
-            CHECK(write_bytes(path, bytes, cuts[i]));
+            test_put_le32(bytes + 8, (uint32_t)cuts[i]);
+            CHECK(test_write_bytes(path, bytes, cuts[i]));
             check_refused(path, NULL);
-            put_u32(bytes + 8, (uint32_t)len);
+            test_put_le32(bytes + 8, (uint32_t)len);
         }
     }
     free(bytes);
@@ -1000,18 +975,18 @@ TEST(chunk_lengths_past_end)
         return;
     }
     const char *path = test_tmp_path("chunks.glb");
-    uint32_t json_len = get_u32(bytes + 12);
-    put_u32(bytes + 12, (uint32_t)len);
-    CHECK(write_bytes(path, bytes, len));
+    uint32_t json_len = test_get_le32(bytes + 12);
+    test_put_le32(bytes + 12, (uint32_t)len);
+    CHECK(test_write_bytes(path, bytes, len));
     check_refused(path, "JSON chunk");
-    put_u32(bytes + 12, 0xfffffff0u);
-    CHECK(write_bytes(path, bytes, len));
+    test_put_le32(bytes + 12, 0xfffffff0u);
+    CHECK(test_write_bytes(path, bytes, len));
     check_refused(path, "JSON chunk");
-    put_u32(bytes + 12, json_len);
+    test_put_le32(bytes + 12, json_len);
     // tinygltf 2.7.0 alone would accept a BIN chunk 8 bytes too long.
     unsigned char *bin_header = bytes + 20 + json_len;
-    put_u32(bin_header, get_u32(bin_header) + 8);
-    CHECK(write_bytes(path, bytes, len));
+    test_put_le32(bin_header, test_get_le32(bin_header) + 8);
+    CHECK(test_write_bytes(path, bytes, len));
     check_refused(path, "BIN chunk");
     free(bytes);
 }
@@ -1143,7 +1118,7 @@ TEST(non_finite_positions)
     for (int i = 0; i < 3; i++) {
         unsigned char bin[TRI_BIN_LEN];
         tri_bin(bin);
-        put_u32(bin + 16, bad_bits[i]);
+        test_put_le32(bin + 16, bad_bits[i]);
         CHECK(write_glb(path, tri_json(&(struct tri_gltf){0}), bin, sizeof bin));
         check_refused(path, "non-finite");
     }
@@ -1151,7 +1126,7 @@ TEST(non_finite_positions)
     struct tri_gltf scaled = {.nodes = "{\"mesh\":0,\"scale\":[1e300,1e300,1e300]}"};
     unsigned char bin[TRI_BIN_LEN];
     tri_bin(bin);
-    put_u32(bin + 12, 0x7f7fffffu);  // FLT_MAX
+    test_put_le32(bin + 12, 0x7f7fffffu);  // FLT_MAX
     CHECK(write_glb(path, tri_json(&scaled), bin, sizeof bin));
     check_refused(path, "non-finite");
 }
@@ -1278,7 +1253,7 @@ TEST(interleaved_attributes)
     for (int i = 0; i < 18; i++) {
         uint32_t bits;
         memcpy(&bits, &data[i], 4);
-        put_u32(bin + 4 * i, bits);
+        test_put_le32(bin + 4 * i, bits);
     }
     bin[74] = 1;
     bin[76] = 2;
@@ -1458,7 +1433,7 @@ write_tri_bin(const char *path)
 {
     unsigned char bin[TRI_BIN_LEN];
     tri_bin(bin);
-    return write_bytes(path, bin, sizeof bin);
+    return test_write_bytes(path, bin, sizeof bin);
 }
 
 TEST(external_buffers_inside)
@@ -1572,7 +1547,7 @@ TEST(size_limit)
     }
     check_refused(gltf_with_uri("big.bin"), "allowed");
     const char *big_glb = test_tmp_path("big.glb");
-    CHECK(write_bytes(big_glb, "glTF", 4));
+    CHECK(test_write_bytes(big_glb, "glTF", 4));
     CHECK(truncate(big_glb, too_big) == 0);
     check_refused(big_glb, "allowed");
     remove(big_bin);
@@ -1601,7 +1576,7 @@ json_digits(const unsigned char *glb, size_t len, size_t **out)
 {
     static size_t at[65536];
     size_t n = 0;
-    size_t end = 20 + get_u32(glb + 12);
+    size_t end = 20 + test_get_le32(glb + 12);
     for (size_t i = 20; i < end && i < len && n < 65536; i++) {
         if (glb[i] >= '0' && glb[i] <= '9') {
             at[n++] = i;
@@ -1616,7 +1591,7 @@ json_digits(const unsigned char *glb, size_t len, size_t **out)
 static void
 load_mutant(const char *path, const unsigned char *bytes, size_t len)
 {
-    CHECK(write_bytes(path, bytes, len));
+    CHECK(test_write_bytes(path, bytes, len));
     struct gltf_mesh m = {0};
     struct diag err = {0};
     if (gltf_load(path, &m, &err)) {

@@ -15,6 +15,7 @@
 
 #include "image.h"
 #include "imgread.h"
+#include "rng.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -33,46 +34,24 @@
 
 /* ---- helpers ---------------------------------------------------------------- */
 
-/* xorshift32: deterministic noise for test images. */
-static uint32_t
-next_random(uint32_t *state)
-{
-    uint32_t x = *state;
-    x ^= x << 13;
-    x ^= x >> 17;
-    x ^= x << 5;
-    *state = x;
-    return x;
-}
-
 /* A smooth gradient (compressible) or noise (not), with some values outside
  * [0, 1] so clamping is exercised too. */
 static void
 fill_image(struct image *img, bool noisy, uint32_t seed)
 {
+    struct rng r = rng_make(seed, 0);
     for (int y = 0; y < img->height; y++) {
         for (int x = 0; x < img->width; x++) {
             float *p = image_pixel(img, x, y);
             for (int c = 0; c < 3; c++) {
                 if (noisy) {
-                    p[c] = (float)(next_random(&seed) % 1000) / 800.0f - 0.1f;
+                    p[c] = (float)(rng_next_u32(&r) % 1000) / 800.0f - 0.1f;
                 } else {
                     p[c] = (float)(x + 2 * y + 40 * c) / (float)(img->width + 2 * img->height + 80);
                 }
             }
         }
     }
-}
-
-static bool
-write_bytes(const char *path, const void *data, size_t len)
-{
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        return false;
-    }
-    bool ok = fwrite(data, 1, len, f) == len;
-    return fclose(f) == 0 && ok;
 }
 
 static uint32_t
@@ -205,9 +184,9 @@ TEST(crc32_and_adler32)
     }
     memset(buf, 0xFF, n);
     CHECK(png_adler32(1, buf, n) == reference_adler32(buf, n));
-    uint32_t seed = 12345;
+    struct rng r = rng_make(12345, 0);
     for (size_t i = 0; i < n; i++) {
-        buf[i] = (uint8_t)next_random(&seed);
+        buf[i] = (uint8_t)rng_next_u32(&r);
     }
     CHECK(png_adler32(1, buf, n) == reference_adler32(buf, n));
     CHECK(png_crc32(0, buf, n) == reference_crc32(buf, n));
@@ -356,7 +335,7 @@ TEST(pfm_read_big_endian_and_grey)
         put_float_be(buf + hl + 4 * i, (float)i + 0.25f);
     }
     const char *path = test_tmp_path("be.pfm");
-    CHECK(write_bytes(path, buf, hl + 48));
+    CHECK(test_write_bytes(path, buf, hl + 48));
     struct image img = {0};
     struct diag err = {0};
     CHECK(image_read_pfm(path, &img, &err));
@@ -382,7 +361,7 @@ TEST(pfm_read_big_endian_and_grey)
         }
     }
     path = test_tmp_path("grey.pfm");
-    CHECK(write_bytes(path, buf, gl + 12));
+    CHECK(test_write_bytes(path, buf, gl + 12));
     CHECK(image_read_pfm(path, &img, &err));
     CHECK(img.width == 3 && img.height == 1);
     for (int x = 0; img.rgb && x < 3; x++) {
@@ -436,7 +415,7 @@ TEST(pfm_malformed)
         char name[64];
         snprintf(name, sizeof name, "bad-%s.pfm", cases[i].name);
         const char *path = test_tmp_path(name);
-        CHECK(write_bytes(path, buf, hl + cases[i].data_bytes));
+        CHECK(test_write_bytes(path, buf, hl + cases[i].data_bytes));
         struct image img = {0};
         struct diag err = {0};
         bool ok = image_read_pfm(path, &img, &err);
@@ -456,17 +435,17 @@ TEST(pfm_malformed)
 TEST(pfm_garbage_and_missing)
 {
     uint8_t buf[4096];
-    uint32_t seed = 99;
+    struct rng r = rng_make(99, 0);
     for (int round = 0; round < 20; round++) {
-        size_t len = next_random(&seed) % sizeof buf;
+        size_t len = rng_next_u32(&r) % sizeof buf;
         for (size_t i = 0; i < len; i++) {
-            buf[i] = (uint8_t)next_random(&seed);
+            buf[i] = (uint8_t)rng_next_u32(&r);
         }
         if (round % 2 == 0 && len > 3) {
             memcpy(buf, "PF\n", 3);  // get past the magic now and then
         }
         const char *path = test_tmp_path("garbage.pfm");
-        CHECK(write_bytes(path, buf, len));
+        CHECK(test_write_bytes(path, buf, len));
         struct image img = {0};
         struct diag err = {0};
         CHECK(!image_read_pfm(path, &img, &err));
@@ -799,7 +778,8 @@ decode_png(const uint8_t *file, size_t len, struct png_info *info)
 static int
 python_inflate(const char *png, const char *out_path)
 {
-    if (system("python3 -c 'import zlib' >/dev/null 2>&1") != 0) {
+    const char *const probe[] = {"python3", "-c", "import zlib", NULL};
+    if (test_run(probe, NULL, 0) != 0) {
         return -1;
     }
     static const char script[] = "import sys, struct, zlib\n"
@@ -810,10 +790,8 @@ python_inflate(const char *png, const char *out_path)
                                  "    if t == b\"IDAT\": z += d[i + 8:i + 8 + n]\n"
                                  "    i += 12 + n\n"
                                  "open(sys.argv[2], \"wb\").write(zlib.decompress(z))\n";
-    char cmd[4096];
-    snprintf(cmd, sizeof cmd, "python3 -c '%s' '%s' '%s'", script, png, out_path);
-    int status = system(cmd);
-    return status == 0 ? 0 : 1;
+    const char *const argv[] = {"python3", "-c", script, png, out_path, NULL};
+    return test_run(argv, NULL, 0) == 0 ? 0 : 1;
 }
 
 /* Write img as PNG, decode it, compare with srgb_encode8; returns the file
@@ -905,9 +883,9 @@ TEST(png_noise_uses_stored_blocks)
     struct image img = {0};
     struct diag err = {0};
     CHECK(image_alloc(&img, 640, 560, &err));
-    uint32_t seed = 4242;
+    struct rng r = rng_make(4242, 0);
     for (size_t i = 0; i < 640 * 560 * 3; i++) {
-        img.rgb[i] = (float)(next_random(&seed) % 65536) / 65535.0f;
+        img.rgb[i] = (float)(rng_next_u32(&r) % 65536) / 65535.0f;
     }
     struct png_info info = {0};
     size_t len = check_png(&img, "noise.png", &info);

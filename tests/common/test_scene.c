@@ -12,6 +12,7 @@
 
 #include "check.h"
 #include "gltf.h"
+#include "rng.h"
 #include "scene.h"
 #include "testlib.h"
 
@@ -839,19 +840,11 @@ TEST(mesh_paths)
 }
 
 static void
-put_u32(unsigned char *p, uint32_t v)
-{
-    for (int i = 0; i < 4; i++) {
-        p[i] = (unsigned char)(v >> (8 * i));
-    }
-}
-
-static void
 put_f32(unsigned char *p, float f)
 {
     uint32_t bits;
     memcpy(&bits, &f, sizeof bits);
-    put_u32(p, bits);
+    test_put_le32(p, bits);
 }
 
 /* A binary glTF of one triangle with vertex normals, written by hand:
@@ -891,15 +884,15 @@ write_triangle_glb(const char *path)
     size_t total = 12 + 8 + json_len + 8 + sizeof data;
     unsigned char glb[1024];
     memset(glb, ' ', sizeof glb);
-    put_u32(glb, 0x46546C67);  // "glTF"
-    put_u32(glb + 4, 2);
-    put_u32(glb + 8, (uint32_t)total);
-    put_u32(glb + 12, (uint32_t)json_len);
-    put_u32(glb + 16, 0x4E4F534A);  // "JSON"
+    test_put_le32(glb, 0x46546C67);  // "glTF"
+    test_put_le32(glb + 4, 2);
+    test_put_le32(glb + 8, (uint32_t)total);
+    test_put_le32(glb + 12, (uint32_t)json_len);
+    test_put_le32(glb + 16, 0x4E4F534A);  // "JSON"
     memcpy(glb + 20, json, sizeof json - 1);
     unsigned char *bin = glb + 20 + json_len;
-    put_u32(bin, sizeof data);
-    put_u32(bin + 4, 0x004E4942);  // "BIN"
+    test_put_le32(bin, sizeof data);
+    test_put_le32(bin + 4, 0x004E4942);  // "BIN"
     for (int i = 0; i < 18; i++) {
         put_f32(bin + 8 + 4 * i, data[i]);
     }
@@ -947,14 +940,6 @@ TEST(mesh_transform)
     scene_free(&s);
 }
 
-/* A tiny generator with a fixed seed: the mutations are the same each run. */
-static uint32_t
-next_random(uint64_t *state)
-{
-    *state = *state * 6364136223846793005u + 1442695040888963407u;
-    return (uint32_t)(*state >> 33);
-}
-
 /* Load and check only what must hold either way: no crash (ASan would
  * tell), a located diagnostic on failure, a consistent scene on success.
  * The scene's name puts it in a directory that does not exist, so that its
@@ -986,7 +971,8 @@ TEST(fuzz)
     static const char *const interesting = " \t\n\r#\"0-.e\x01\x80\xff";
     char *names[MAX_SCENES];
     int n = list_scenes("scenes", names, MAX_SCENES);
-    uint64_t state = 12345;
+    /* A fixed seed: the mutations are the same each run. */
+    struct rng state = rng_make(12345, 0);
     for (int i = 0; i < n; i++) {
         size_t len = 0;
         char *text = test_read_file(test_root_path(names[i]), &len);
@@ -1004,10 +990,10 @@ TEST(fuzz)
         char *copy = malloc(len);
         for (int round = 0; round < 2000 && len > 0; round++) {
             memcpy(copy, text, len);
-            int changes = 1 + (int)(next_random(&state) % 4);
+            int changes = 1 + (int)(rng_next_u32(&state) % 4);
             for (int k = 0; k < changes; k++) {
-                size_t at = next_random(&state) % len;
-                uint32_t r = next_random(&state);
+                size_t at = rng_next_u32(&state) % len;
+                uint32_t r = rng_next_u32(&state);
                 copy[at] = r & 1 ? interesting[(r >> 1) % strlen(interesting)] : (char)(r >> 8);
             }
             load_any(copy, len);

@@ -135,15 +135,34 @@ test_root_path(const char *relative)
 }
 
 bool
-test_write_file(const char *path, const char *text)
+test_write_bytes(const char *path, const void *data, size_t len)
 {
     FILE *f = fopen(path, "wb");
     if (!f) {
         return false;
     }
-    size_t n = strlen(text);
-    bool ok = fwrite(text, 1, n, f) == n;
+    bool ok = fwrite(data, 1, len, f) == len;
     return fclose(f) == 0 && ok;
+}
+
+bool
+test_write_file(const char *path, const char *text)
+{
+    return test_write_bytes(path, text, strlen(text));
+}
+
+void
+test_put_le32(unsigned char *p, uint32_t v)
+{
+    for (int i = 0; i < 4; i++) {
+        p[i] = (unsigned char)(v >> (8 * i));
+    }
+}
+
+uint32_t
+test_get_le32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
 }
 
 bool
@@ -241,6 +260,9 @@ test_run_signalled(
     size_t cap)
 {
     const char *capture = test_tmp_path("run-output.txt");
+    if (was_running) {
+        *was_running = false;
+    }
     int pid = test_spawn(argv, capture);
     int status = -1;
     bool running = pid > 0;
@@ -314,7 +336,11 @@ test_spawn(const char *const argv[], const char *capture)
          * SIGINT). */
         signal(SIGINT, SIG_DFL);
         signal(SIGTERM, SIG_DFL);
-        execv(argv[0], (char *const *)argv);
+        if (strchr(argv[0], '/')) {
+            execv(argv[0], (char *const *)argv);
+        } else {
+            execvp(argv[0], (char *const *)argv);
+        }
         _exit(127);
     }
     return pid < 0 ? -1 : (int)pid;

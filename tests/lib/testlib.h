@@ -7,6 +7,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "image.h"
 
@@ -24,6 +25,13 @@ const char *test_tmp_path(const char *name);
 const char *test_root_path(const char *relative);
 
 bool test_write_file(const char *path, const char *text);
+
+/* Write len bytes to path (created or truncated); false on any failure. */
+bool test_write_bytes(const char *path, const void *data, size_t len);
+
+/* 32-bit unsigned values in little-endian byte order (glTF's). */
+void test_put_le32(unsigned char *p, uint32_t v);
+uint32_t test_get_le32(const unsigned char *p);
 bool test_file_exists(const char *path);
 
 /* How many entries of directory dir have a name starting with prefix
@@ -39,7 +47,8 @@ extern const char *const test_contract_keys[];
 /* Read a whole file; NULL on failure.  *len gets its length. Free it. */
 char *test_read_file(const char *path, size_t *len);
 
-/* Run argv[0] with arguments argv (NULL-terminated), stdin from /dev/null.
+/* Run argv[0] (looked up in PATH when it holds no '/') with arguments argv
+ * (NULL-terminated), stdin from /dev/null.
  * Returns the exit status (128 + signal when killed, -1 when it could not
  * run).  Its stdout and stderr together go to `output` (truncated to cap,
  * NUL-terminated) when output is not NULL. */
