@@ -88,7 +88,7 @@ for prog in "$@"; do
         continue
     fi
     log="$logdir/$label-$name.log"
-    private=$(mktemp -d "${TMPDIR:-/tmp}/stagelight-run.XXXXXX") || exit 2
+    private=$(mktemp -d "${TMPDIR:-/tmp}/p.XXXXXX") || exit 2
     start=$(date +%s)
     # In the background so that an interrupt reaches the handler at once;
     # timeout runs the program in a process group of its own.

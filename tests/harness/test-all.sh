@@ -17,6 +17,8 @@
 # The run gets a temporary directory of its own (TMPDIR for everything it
 # starts), removed at the end, also on failure or interrupt; the run fails
 # when something was left in it (a test that does not clean up after itself).
+# Its name and run-tests.sh's are short: a Unix socket's path (Chromium's, in
+# test_report_browser) must stay under 108 bytes.
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$root" || exit 2
@@ -52,7 +54,7 @@ if [ -n "$stage" ]; then
 fi
 
 mkdir -p "$logs" || exit 2
-run_tmp=$(mktemp -d "${TMPDIR:-/tmp}/stagelight-make-test.XXXXXX") || exit 2
+run_tmp=$(mktemp -d "${TMPDIR:-/tmp}/sl-run.XXXXXX") || exit 2
 trap 'rm -rf "$run_tmp"' EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM HUP

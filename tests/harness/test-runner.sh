@@ -258,6 +258,48 @@ else
 fi
 rm -f "$C/tests/stage/02_crash.c" "$C/tests/stage/02_silent.c" "$C/tests/stage/02_hang.c"
 
+# ---- an interrupted run leaves nothing in TMPDIR ------------------------------
+# A test that has written to its temporary directory is running when the
+# whole run is stopped (SIGTERM to its process group, as a terminal's Ctrl-C
+# reaches every process of the job).
+cat >"$C/tests/stage/02_hang.c" <<'EOF'
+#include <stdio.h>
+#include <unistd.h>
+
+#include "testlib.h"
+
+int
+main(void)
+{
+    test_write_file(test_tmp_path("work.txt"), "partial");
+    puts("started");
+    fflush(stdout);
+    sleep(60);
+    return 0;
+}
+EOF
+mkdir -p "$T/tmp"
+log=$C/build/tests/logs/02_fake-02_hang.log
+rm -f "$log"
+(cd "$C" && exec env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS -u STAGE TMPDIR="$T/tmp" \
+    setsid make --no-print-directory TINYGLTF=0 OPENEXR=0 test STAGE=02) >"$T/out" 2>"$T/err" &
+job=$!
+i=0
+while [ "$i" -lt 600 ] && ! grep -qs started "$log"; do
+    sleep 0.1
+    i=$((i + 1))
+done
+kill -TERM -- "-$job" 2>/dev/null
+st=0
+wait "$job" || st=$?
+left=$(ls -A "$T/tmp")
+if grep -qs started "$log" && [ "$st" -ne 0 ] && [ -z "$left" ]; then
+    ok interrupted-run-cleans-up
+else
+    fail interrupted-run-cleans-up "exit $st; left in TMPDIR: $left" "$(said)"
+fi
+rm -f "$C/tests/stage/02_hang.c"
+
 # ---- parts: no result line, a lost exit status, leftovers in TMPDIR -----------
 cat >"$C/tests/harness/parts" <<'EOF'
 quiet   echo "no summary here"
