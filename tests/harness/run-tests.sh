@@ -19,8 +19,9 @@
 # Environment: TEST_LOG_DIR (each program's log; default the current
 # directory),
 # TEST_TIMEOUT (seconds a program may run, default 600).
-# Each program runs with a private TMPDIR that is removed when it ends, also
-# when it crashes or the run is interrupted, so a run leaves nothing behind.
+# Each program runs with a private TMPDIR (also its TEST_TMPDIR: testlib's
+# directory) that is removed when it ends, also when it crashes or the run is
+# interrupted, so a run leaves nothing behind.
 built=0
 build_log=
 required=
@@ -92,7 +93,7 @@ for prog in "$@"; do
     start=$(date +%s)
     # In the background so that an interrupt reaches the handler at once;
     # timeout runs the program in a process group of its own.
-    TMPDIR=$private timeout -k 10 "$limit" "$prog" >"$log" 2>&1 </dev/null &
+    TMPDIR=$private TEST_TMPDIR=$private timeout -k 10 "$limit" "$prog" >"$log" 2>&1 </dev/null &
     pid=$!
     wait "$pid"
     status=$?

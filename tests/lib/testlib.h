@@ -15,7 +15,8 @@
 const char *test_root(void);
 
 /* A fresh private directory for this test program (created on first use,
- * removed with everything in it when the program exits). */
+ * removed with everything in it when the program exits): $TEST_TMPDIR when
+ * the runner gives one, else a new directory in $TMPDIR. */
 const char *test_tmpdir(void);
 
 /* tmpdir/name; the string stays valid until the program ends. */
