@@ -398,6 +398,44 @@ test_run_tool(const char *name, const char *const args[], char *output, size_t c
     return test_run(argv, output, cap);
 }
 
+/* Whether the program at path is the render of stage `stage` in the given
+ * precision: its --version line reads "render (STAGE) ..., P precision".
+ * A binary of another stage or precision ends the test program (exit 3,
+ * no result line), which the runner reports as a failure by name. */
+static void
+require_stage_binary(const char *variable, const char *path, const char *precision)
+{
+    const char *stage = getenv("STAGE");
+    char output[512];
+    const char *argv[] = {path, "--version", NULL};
+    int status = test_run(argv, output, sizeof output);
+    char expect_stage[256];
+    char expect_precision[64];
+    snprintf(expect_stage, sizeof expect_stage, "render (%s) ", stage ? stage : "");
+    snprintf(expect_precision, sizeof expect_precision, " %s precision", precision);
+    if (!stage || !stage[0]) {
+        printf(
+            "testlib: %s is given but STAGE is not: cannot check that %s is the stage's render\n",
+            variable,
+            path);
+    } else if (
+        status == 0 && strncmp(output, expect_stage, strlen(expect_stage)) == 0
+        && strstr(output, expect_precision) != NULL) {
+        return;
+    } else {
+        printf(
+            "testlib: %s=%s is not the %s-precision render of stage %s (exit %d, --version: %s)\n",
+            variable,
+            path,
+            precision,
+            stage,
+            status,
+            output);
+    }
+    fflush(stdout);
+    exit(3);
+}
+
 const char *
 test_render_binary(void)
 {
