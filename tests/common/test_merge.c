@@ -121,7 +121,15 @@ TEST(what_merge_refuses)
     const char *const png_out[] = {"-o", TMP("x.png"), TMP("s1.pfm"), NULL};
     const char *const sizes[] =
         {"-o", TMP("x.pfm"), "--spp", "2", TMP("small.pfm"), TMP("s1.pfm"), NULL};
-    const char *const *failures[] = {same_seed, no_spp, png_in, png_out, sizes};
+    CHECK(write_flat("o1.pfm", 0) && write_flat("o2.pfm", 1));
+    CHECK(test_write_file(
+        TMP("o1.json"),
+        "{\"stage\": \"07_pathtrace\", \"scene\": \"a.scene\", \"spp\": 4, \"seed\": 1}"));
+    CHECK(test_write_file(
+        TMP("o2.json"),
+        "{\"stage\": \"07_pathtrace\", \"scene\": \"b.scene\", \"spp\": 4, \"seed\": 2}"));
+    const char *const scenes[] = {"-o", TMP("x.pfm"), TMP("o1.pfm"), TMP("o2.pfm"), NULL};
+    const char *const *failures[] = {same_seed, no_spp, png_in, png_out, scenes, sizes};
     for (size_t i = 0; i < sizeof failures / sizeof failures[0]; i++) {
         int status = merge(failures[i], out);
         CHECK_MSG(status == 1 && strstr(out, "error"), "case %zu: exit %d: %s", i, status, out);

@@ -30,6 +30,7 @@ struct input {
     double spp; /* 0: from its stats file */
     char stats[4096]; /* its stats file, when one was found */
     double seed; /* from the stats file; -1: unknown */
+    char what[1200]; /* its stage and scene, as the stats file writes them */
 };
 
 struct args {
@@ -56,7 +57,8 @@ usage(FILE *f)
         "An input's spp comes from --spp, else from its stats file (render --stats):\n"
         "the input's name with .json for its extension (a.pfm: a.json), or the\n"
         "input's name with .json added (a.pfm.json).  Inputs whose stats files\n"
-        "hold the same seed are refused: they are the same samples twice.\n"
+        "hold the same seed are refused: they are the same samples twice; so are\n"
+        "inputs whose stats files name another stage or scene file.\n"
         "\n"
         "  -o, --output FILE   the merged image\n"
         "  --spp N             the inputs after this option have N spp each\n"
@@ -137,7 +139,29 @@ linear_format(const char *path)
     return f == IMAGE_FORMAT_PFM || f == IMAGE_FORMAT_EXR;
 }
 
-/* Find the input's stats file and read its spp (unless given) and seed. */
+/* The JSON string after "key": in text, quotes and escapes kept (two
+ * equal strings are written the same way); empty when there is none. */
+static void
+raw_json_string(const char *text, const char *key, char *out, size_t cap)
+{
+    char pattern[64];
+    snprintf(pattern, sizeof pattern, "\"%s\": \"", key);
+    const char *p = text ? strstr(text, pattern) : NULL;
+    size_t n = 0;
+    if (p) {
+        p += strlen(pattern);
+        while (*p && *p != '"' && n + 2 < cap) {
+            if (*p == '\\' && p[1]) {
+                out[n++] = *p++; /* an escape and the character it escapes */
+            }
+            out[n++] = *p++;
+        }
+    }
+    out[n] = '\0';
+}
+
+/* Find the input's stats file and read its spp (unless given), seed, stage
+ * and scene. */
 static bool
 read_input_stats(struct input *in, struct diag *err)
 {
@@ -150,8 +174,18 @@ read_input_stats(struct input *in, struct diag *err)
     }
     if (!test_file_exists(in->stats)) {
         in->stats[0] = '\0';
-    } else if (!test_json_number(in->stats, "seed", &in->seed)) {
-        in->seed = -1;
+    } else {
+        if (!test_json_number(in->stats, "seed", &in->seed)) {
+            in->seed = -1;
+        }
+        char *text = test_read_file(in->stats, NULL);
+        char stage[128], scene[1024];
+        raw_json_string(text, "stage", stage, sizeof stage);
+        raw_json_string(text, "scene", scene, sizeof scene);
+        /* The scene's file name only: other machines may keep it elsewhere. */
+        const char *name = strrchr(scene, '/') ? strrchr(scene, '/') + 1 : scene;
+        snprintf(in->what, sizeof in->what, "stage %s, scene %s", stage, name);
+        free(text);
     }
     if (in->spp > 0) {
         return true;
@@ -188,6 +222,19 @@ check_inputs(struct args *a, struct diag *err)
             return false;
         }
         for (int j = 0; j < i; j++) {
+            const struct input *other = &a->inputs[j];
+            if (in->what[0] && other->what[0] && strcmp(in->what, other->what) != 0) {
+                diag_set(
+                    err,
+                    in->path,
+                    0,
+                    0,
+                    "not a render of the same image as %s (%s; %s)",
+                    other->path,
+                    in->what,
+                    other->what);
+                return false;
+            }
             if (in->seed >= 0 && in->seed == a->inputs[j].seed) {
                 diag_set(
                     err,
