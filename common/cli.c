@@ -12,6 +12,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "scene.h"
+
 #define STAGELIGHT_VERSION "1.0"
 
 /* The shared options: the same table drives parsing and --help. */
@@ -26,6 +28,7 @@ enum shared_id {
     ID_QUIET,
     ID_STRICT,
     ID_CAMERA,
+    ID_MAX_MEMORY,
     ID_HELP,
     ID_VERSION,
 };
@@ -53,6 +56,11 @@ static const struct shared_option shared_options[] = {
     {ID_QUIET, 'q', "quiet", NULL, "no progress bar"},
     {ID_STRICT, 0, "strict", NULL, "refuse a scene that needs what this stage does not model"},
     {ID_CAMERA, 0, "camera", "NAME", "a glTF scene's camera (default: its first)"},
+    {ID_MAX_MEMORY,
+     0,
+     "max-memory",
+     "MIB",
+     "refuse a render estimated to need more memory than this (default 4096)"},
     {ID_HELP, 0, "help", NULL, "print this help"},
     {ID_VERSION, 0, "version", NULL, "print the version"},
 };
@@ -268,6 +276,8 @@ apply_shared(
     case ID_CAMERA:
         opt->camera = value;
         return true;
+    case ID_MAX_MEMORY:
+        return parse_int_in(name, value, 1, 1 << 30, &opt->max_memory_mib, err);
     case ID_HELP:
     case ID_VERSION:
         return true;
@@ -381,7 +391,7 @@ cli_parse(
     FILE *out,
     struct diag *err)
 {
-    *opt = (struct options){.seed = 1};
+    *opt = (struct options){.seed = 1, .max_memory_mib = (int)(SCENE_DEFAULT_MAX_BYTES >> 20)};
     for (int i = 1; i < argc; i++) {
         const char *arg = argv[i];
         if (arg[0] != '-' || arg[1] == '\0') {

@@ -24,6 +24,8 @@ struct options {
     bool quiet; /* -q */
     bool strict; /* --strict */
     const char *camera; /* --camera: a glTF scene's camera by name; NULL: its first */
+    int max_memory_mib; /* --max-memory: refuse a render estimated to need more (MiB);
+                           default SCENE_DEFAULT_MAX_BYTES */
 };
 
 enum option_kind {

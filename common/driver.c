@@ -180,6 +180,14 @@ write_mean(
     }
 }
 
+uint64_t
+render_job_bytes(const struct render_job *job)
+{
+    uint64_t per_pixel = 3 * sizeof(float) + 2 * sizeof(vec3) + sizeof(unsigned char);
+    uint64_t pixels = (uint64_t)job->width * (uint64_t)job->height;
+    return pixels * per_pixel + (uint64_t)job->threads * sizeof(struct worker);
+}
+
 bool
 render_image(
     const struct render_job *job,

@@ -52,6 +52,11 @@ struct render_result {
     double cpu_seconds; /* processor time of all threads (steadier on a busy machine) */
 };
 
+/* The bytes render_image allocates for the job, before it allocates them:
+ * per pixel the image (3 floats), one pass's estimates and their running
+ * sum (a vec3 each) and a NaN flag; per thread its bookkeeping. */
+uint64_t render_job_bytes(const struct render_job *job);
+
 /* Render into out (allocated here).  Returns false only when memory or
  * threads could not be had (err says which). */
 bool render_image(

@@ -30,6 +30,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "diag.h"
 
@@ -114,8 +115,18 @@ struct gltf_mesh {
 bool gltf_available(void);
 
 /* Load path into out (zero-initialised by the caller).  On failure out is
- * left empty and err names the file and the problem. */
+ * left empty and err names the file and the problem.  The mesh's arrays may
+ * take at most GLTF_DEFAULT_MAX_BYTES. */
 bool gltf_load(const char *path, struct gltf_mesh *out, struct diag *err);
+
+/* 4 GiB, the default limit of a scene's arrays too (scene.h). */
+#define GLTF_DEFAULT_MAX_BYTES ((uint64_t)4 << 30)
+
+/* Same, with the mesh's arrays limited to max_bytes, checked once the
+ * vertices and triangles are counted (each node that instances a mesh
+ * counts it again) and before anything is allocated for them. */
+bool
+gltf_load_limited(const char *path, uint64_t max_bytes, struct gltf_mesh *out, struct diag *err);
 
 /* Free; accepts a zero-initialised mesh. */
 void gltf_free(struct gltf_mesh *mesh);

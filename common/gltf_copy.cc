@@ -146,15 +146,35 @@ copy_indices(const part &p, size_t first_vertex, bool mirrored, unsigned *out, s
 }
 
 static bool
-allocate_mesh(const std::vector<part> &parts, struct gltf_mesh *out, std::string *why)
+allocate_mesh(
+    const std::vector<part> &parts,
+    uint64_t max_bytes,
+    struct gltf_mesh *out,
+    std::string *why)
 {
     size_t n_vertices = 0;
+    size_t n_triangles = 0;
     bool any_normals = false;
     for (const part &p : parts) {
         n_vertices += p.positions.count;
-        out->n_triangles += p.n_triangles;
+        n_triangles += p.n_triangles;
         any_normals = any_normals || p.has_normals;
     }
+    // plan_parts keeps the counts below INT_MAX: no product overflows.
+    uint64_t per_vertex = (any_normals ? 6 : 3) * sizeof(double);
+    uint64_t bytes = n_vertices * per_vertex + 3 * n_triangles * sizeof(unsigned);
+    if (bytes > max_bytes) {
+        *why = format(
+            "%zu vertices and %zu triangles (a mesh counts once per node that uses it) need "
+            "%llu MiB, more than the memory limit of %llu MiB left for them; raise it with "
+            "--max-memory",
+            n_vertices,
+            n_triangles,
+            (unsigned long long)((bytes + (1 << 20) - 1) >> 20),
+            (unsigned long long)(max_bytes >> 20));
+        return false;
+    }
+    out->n_triangles = n_triangles;
     // The limits keep these products far from overflow; +1 avoids malloc(0).
     out->positions = (double *)malloc((3 * n_vertices + 1) * sizeof(double));
     out->indices = (unsigned *)malloc((3 * out->n_triangles + 1) * sizeof(unsigned));
@@ -175,10 +195,11 @@ bool
 copy_parts(
     const std::vector<job> &jobs,
     const std::vector<part> &parts,
+    uint64_t max_bytes,
     struct gltf_mesh *out,
     std::string *why)
 {
-    if (!allocate_mesh(parts, out, why)) {
+    if (!allocate_mesh(parts, max_bytes, out, why)) {
         return false;
     }
     size_t first_vertex = 0;

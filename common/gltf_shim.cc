@@ -57,7 +57,7 @@ format(const char *fmt, ...)
 }
 
 static bool
-load(const char *path, struct gltf_mesh *out, std::string *why)
+load(const char *path, uint64_t max_bytes, struct gltf_mesh *out, std::string *why)
 {
     tinygltf::Model model;
     fs_guard guard;
@@ -66,8 +66,9 @@ load(const char *path, struct gltf_mesh *out, std::string *why)
     std::vector<part> parts;
     return parse_model(path, &model, &guard, why) && check_required_extensions(model, why)
            && collect_jobs(model, &jobs, &cameras_and_lights, why)
-           && plan_parts(model, jobs, &parts, why) && copy_parts(jobs, parts, out, why)
-           && copy_materials(model, out, why) && copy_placed(model, cameras_and_lights, out, why);
+           && plan_parts(model, jobs, &parts, why)
+           && copy_parts(jobs, parts, max_bytes, out, why) && copy_materials(model, out, why)
+           && copy_placed(model, cameras_and_lights, out, why);
 }
 
 // Messages may quote the file's own strings: keep control bytes out of them.
@@ -92,6 +93,12 @@ gltf_available(void)
 extern "C" bool
 gltf_load(const char *path, struct gltf_mesh *out, struct diag *err)
 {
+    return gltf_load_limited(path, GLTF_DEFAULT_MAX_BYTES, out, err);
+}
+
+extern "C" bool
+gltf_load_limited(const char *path, uint64_t max_bytes, struct gltf_mesh *out, struct diag *err)
+{
     *out = gltf_mesh{};
     if (!path) {
         diag_set(err, NULL, 0, 0, "no glTF file named");
@@ -99,7 +106,7 @@ gltf_load(const char *path, struct gltf_mesh *out, struct diag *err)
     }
     try {
         std::string why;
-        if (load(path, out, &why)) {
+        if (load(path, max_bytes, out, &why)) {
             return true;
         }
         diag_set(err, path, 0, 0, "%s", why.c_str());

@@ -119,9 +119,11 @@ bool plan_parts(
     std::vector<part> *parts,
     std::string *why);
 // gltf_copy.cc
+// Refuses, before allocating, arrays that would pass max_bytes.
 bool copy_parts(
     const std::vector<job> &jobs,
     const std::vector<part> &parts,
+    uint64_t max_bytes,
     struct gltf_mesh *out,
     std::string *why);
 // gltf_extras.cc

@@ -5,6 +5,7 @@
 #include "run.h"
 
 #include <limits.h>
+#include <stdint.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -129,28 +130,6 @@ check_mesh_files(struct run *run)
     return true;
 }
 
-bool
-run_load_scene(struct run *run, unsigned modelled)
-{
-    struct diag err;
-    const struct scene_options load = {.camera = run->opt.camera};
-    if (!scene_load_with(run->opt.scene_path, &load, &run->scene, &err)) {
-        return stop(run, &err, EXIT_INPUT);
-    }
-    run->scene_loaded = true;
-    if (!check_mesh_files(run)) {
-        run_free(run);
-        return false;
-    }
-    if (!report_unmodelled(run, modelled)) {
-        run_free(run);
-        run->status = EXIT_INPUT;
-        return false;
-    }
-    run->rep.seconds_load = clock_seconds() - run->start;
-    return true;
-}
-
 /* -W alone keeps the scene's aspect ratio; -H alone likewise. */
 static void
 image_size(const struct scene *scene, const struct options *opt, int *width, int *height)
@@ -168,6 +147,86 @@ image_size(const struct scene *scene, const struct options *opt, int *width, int
         *height = opt->height;
         *width = (int)(opt->height / aspect + 0.5) > 0 ? (int)(opt->height / aspect + 0.5) : 1;
     }
+}
+
+/* --max-memory in bytes. */
+static uint64_t
+memory_limit(const struct run *run)
+{
+    return (uint64_t)run->opt.max_memory_mib << 20;
+}
+
+/* What an acceleration structure may take per primitive: the BVH of stages
+ * 05-07 holds at most two 32-byte nodes, a 4-byte index and three leaf
+ * vertices (vec3) per primitive and builds with a 16-byte record of each,
+ * 156 bytes in double; rounded up to a bound with room to spare.  Stages
+ * 01-04 hold none: for them it overestimates. */
+#define ACCEL_BYTES_PER_PRIMITIVE 256
+
+/* Refuse, before anything is allocated for it, a render whose estimate
+ * passes --max-memory: the scene's arrays (loaded within the limit), the
+ * acceleration structure, and what the tile driver allocates for the image
+ * (docs/robustness.md). */
+static bool
+check_memory(const struct run *run, struct diag *err)
+{
+    const struct scene *s = &run->scene;
+    struct render_job job = {.threads = cli_thread_count(&run->opt)};
+    image_size(s, &run->opt, &job.width, &job.height);
+    uint64_t primitives = (uint64_t)s->n_spheres + (uint64_t)s->n_quads + (uint64_t)s->n_triangles
+                          + (uint64_t)s->n_area_lights;
+    uint64_t image = render_job_bytes(&job);
+    uint64_t accel = primitives * ACCEL_BYTES_PER_PRIMITIVE;
+    uint64_t total = scene_bytes(s) + accel + image;
+    if (total <= memory_limit(run)) {
+        return true;
+    }
+    diag_set(
+        err,
+        run->opt.scene_path,
+        0,
+        0,
+        "the render would need about %llu MiB (a %dx%d image: %llu MiB; %llu primitives x %d "
+        "bytes: %llu MiB; the scene: %llu MiB), more than the memory limit of %d MiB; raise it "
+        "with --max-memory, or ask for a smaller image with -W/-H",
+        (unsigned long long)(total >> 20),
+        job.width,
+        job.height,
+        (unsigned long long)(image >> 20),
+        (unsigned long long)primitives,
+        ACCEL_BYTES_PER_PRIMITIVE,
+        (unsigned long long)(accel >> 20),
+        (unsigned long long)(scene_bytes(s) >> 20),
+        run->opt.max_memory_mib);
+    return false;
+}
+
+bool
+run_load_scene(struct run *run, unsigned modelled)
+{
+    struct diag err;
+    const struct scene_options load = {.camera = run->opt.camera, .max_bytes = memory_limit(run)};
+    if (!scene_load_with(run->opt.scene_path, &load, &run->scene, &err)) {
+        return stop(run, &err, EXIT_INPUT);
+    }
+    run->scene_loaded = true;
+    if (!check_mesh_files(run)) {
+        run_free(run);
+        return false;
+    }
+    if (!report_unmodelled(run, modelled)) {
+        run_free(run);
+        run->status = EXIT_INPUT;
+        return false;
+    }
+    if (!check_memory(run, &err)) {
+        diag_print(stderr, &err, "error");
+        run_free(run);
+        run->status = EXIT_INPUT;
+        return false;
+    }
+    run->rep.seconds_load = clock_seconds() - run->start;
+    return true;
 }
 
 struct render_job
@@ -332,7 +391,7 @@ run_render(struct run *run, const struct render_job *job, int spp_per_pass)
     struct render_result result;
     if (!render_image(job, &image, &result, &err)) {
         diag_print(stderr, &err, "error");
-        return EXIT_INPUT;
+        return EXIT_RESOURCES;
     }
     if (result.passes_done == 0) {
         fprintf(stderr, "interrupted before the image was complete; nothing written\n");

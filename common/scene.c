@@ -233,43 +233,13 @@ fail:
     return false;
 }
 
-bool
-scene_load(const char *path, struct scene *out, struct diag *err)
-{
-    return scene_load_with(path, NULL, out, err);
-}
-
-bool
-scene_load_with(
-    const char *path,
-    const struct scene_options *opt,
-    struct scene *out,
-    struct diag *err)
-{
-    const char *camera = opt ? opt->camera : NULL;
-    if (scene_path_is_gltf(path)) {
-        return scene_load_gltf(path, camera, out, err);
-    }
-    *out = (struct scene){.width = 0};
-    if (camera) {
-        diag_set(err, path, 0, 0, "--camera chooses a camera of a glTF scene (.glb, .gltf)");
-        return false;
-    }
-    char *text = NULL;
-    size_t len = 0;
-    if (!read_file(path, &text, &len, err)) {
-        return false;
-    }
-    bool ok = scene_load_string(text, len, path, out, err);
-    free(text);
-    return ok;
-}
-
-bool
-scene_load_string(
+/* The text of a scene, parsed with its arrays limited to max_bytes. */
+static bool
+load_text(
     const char *text,
     size_t len,
     const char *name,
+    uint64_t max_bytes,
     struct scene *out,
     struct diag *err)
 {
@@ -285,11 +255,74 @@ scene_load_string(
     p.name = name;
     p.scene = out;
     p.err = err;
+    p.max_bytes = max_bytes;
     if (!parse_scene(&p)) {
         scene_free(out);
         return false;
     }
     return true;
+}
+
+bool
+scene_load_with(
+    const char *path,
+    const struct scene_options *opt,
+    struct scene *out,
+    struct diag *err)
+{
+    const char *camera = opt ? opt->camera : NULL;
+    uint64_t max_bytes = opt && opt->max_bytes ? opt->max_bytes : SCENE_DEFAULT_MAX_BYTES;
+    if (scene_path_is_gltf(path)) {
+        return scene_load_gltf(path, camera, out, err);
+    }
+    *out = (struct scene){.width = 0};
+    if (camera) {
+        diag_set(err, path, 0, 0, "--camera chooses a camera of a glTF scene (.glb, .gltf)");
+        return false;
+    }
+    char *text = NULL;
+    size_t len = 0;
+    if (!read_file(path, &text, &len, err)) {
+        return false;
+    }
+    bool ok = load_text(text, len, path, max_bytes, out, err);
+    free(text);
+    return ok;
+}
+
+bool
+scene_load_limited(const char *path, uint64_t max_bytes, struct scene *out, struct diag *err)
+{
+    const struct scene_options opt = {.max_bytes = max_bytes};
+    return scene_load_with(path, &opt, out, err);
+}
+
+bool
+scene_load(const char *path, struct scene *out, struct diag *err)
+{
+    return scene_load_with(path, NULL, out, err);
+}
+
+bool
+scene_load_string(
+    const char *text,
+    size_t len,
+    const char *name,
+    struct scene *out,
+    struct diag *err)
+{
+    return load_text(text, len, name, SCENE_DEFAULT_MAX_BYTES, out, err);
+}
+
+uint64_t
+scene_bytes(const struct scene *s)
+{
+    return (uint64_t)s->n_materials * sizeof *s->materials
+           + (uint64_t)s->n_spheres * sizeof *s->spheres + (uint64_t)s->n_quads * sizeof *s->quads
+           + (uint64_t)s->n_vertices * (sizeof *s->positions + sizeof *s->normals)
+           + (uint64_t)s->n_triangles * sizeof *s->triangles
+           + (uint64_t)s->n_point_lights * sizeof *s->point_lights
+           + (uint64_t)s->n_area_lights * sizeof *s->area_lights;
 }
 
 void

@@ -16,6 +16,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "diag.h"
 #include "vec3.h"
@@ -25,6 +26,11 @@
 #define SCENE_MAX_NAME 63
 #define SCENE_MAX_MATERIALS 4096
 #define SCENE_MAX_NOTES 32
+
+/* The memory a scene's arrays (its elements, a mesh's vertices and
+ * triangles) may take unless the caller sets another limit: render's
+ * --max-memory (docs/robustness.md).  4 GiB. */
+#define SCENE_DEFAULT_MAX_BYTES ((uint64_t)4 << 30)
 
 /* A place in a scene file (1-based line and column; 0,0 = no place). */
 struct src_loc {
@@ -169,12 +175,16 @@ struct scene {
  * fills err with FILE:LINE:COL and what was expected, what was found.
  * A path ending in .glb or .gltf (any case) is a glTF file taken as the
  * whole scene: its first camera, its lights, its meshes and materials
- * (docs/scene-format.md, "A glTF file as the scene"). */
+ * (docs/scene-format.md, "A glTF file as the scene").  The scene's arrays
+ * may take at most SCENE_DEFAULT_MAX_BYTES. */
 bool scene_load(const char *path, struct scene *out, struct diag *err);
 
-/* Choices for a glTF file loaded as the scene. */
+/* Choices for loading a scene. */
 struct scene_options {
-    const char *camera; /* the camera's name; NULL: the file's first */
+    const char *camera; /* a glTF scene's camera by name; NULL: the file's first */
+    uint64_t max_bytes; /* the scene's arrays may take at most this; 0: SCENE_DEFAULT_MAX_BYTES.
+                           A statement that would need more is an error at that
+                           statement, before anything is allocated for it. */
 };
 
 /* scene_load with options (opt may be NULL); a camera named for a scene
@@ -185,6 +195,9 @@ bool scene_load_with(
     struct scene *out,
     struct diag *err);
 
+/* scene_load with the scene's arrays limited to max_bytes. */
+bool scene_load_limited(const char *path, uint64_t max_bytes, struct scene *out, struct diag *err);
+
 /* Same, from text in memory; `name` is the file name used in diagnostics and
  * the directory mesh files are found relative to. */
 bool scene_load_string(
@@ -193,6 +206,9 @@ bool scene_load_string(
     const char *name,
     struct scene *out,
     struct diag *err);
+
+/* Bytes held by the scene's arrays (counts times sizes). */
+uint64_t scene_bytes(const struct scene *s);
 
 /* Free everything; accepts a zero-initialised or half-built scene. */
 void scene_free(struct scene *s);

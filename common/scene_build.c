@@ -27,17 +27,36 @@ use_feature(struct parser *p, enum feature f, const struct token *kw)
 /* Room for `need` items in an array of capacity *cap: the (possibly moved)
  * array, or NULL with the diag set (the old array is still owned by the
  * scene).  A statement adds one item, and a 64 MiB file holds far fewer
- * than INT_MAX statements; meshes check their counts before they come. */
+ * than INT_MAX statements; meshes check their counts before they come.
+ * Every array counts against the parser's memory limit (p->max_bytes): the
+ * items needed must fit in it, and the doubled capacity is cut to what
+ * fits, so the limit is never passed, not even by the last doubling. */
 void *
 grow(struct parser *p, const struct token *at, void *items, int need, int *cap, size_t size)
 {
     if (need <= *cap) {
         return items;
     }
+    uint64_t others = p->bytes - (uint64_t)*cap * size;
+    uint64_t room = p->max_bytes > others ? (p->max_bytes - others) / size : 0;
+    if ((uint64_t)need > room) {
+        fail(
+            p,
+            at,
+            "the scene needs more than the memory limit of %llu MiB for its elements "
+            "(%d spheres, %d quads, %d triangles, %d vertices so far); raise it with --max-memory",
+            (unsigned long long)(p->max_bytes >> 20),
+            p->scene->n_spheres,
+            p->scene->n_quads,
+            p->scene->n_triangles,
+            p->scene->n_vertices);
+        return NULL;
+    }
     int new_cap = *cap < 16 ? 16 : *cap;
     while (new_cap < need) {
         new_cap = new_cap > INT_MAX / 2 ? INT_MAX : new_cap * 2;
     }
+    new_cap = (uint64_t)new_cap > room ? (int)room : new_cap;
     void *grown = NULL;
     if ((size_t)new_cap <= SIZE_MAX / size) {
         grown = realloc(items, (size_t)new_cap * size);
@@ -46,6 +65,7 @@ grow(struct parser *p, const struct token *at, void *items, int need, int *cap, 
         fail(p, at, "out of memory");
         return NULL;
     }
+    p->bytes = others + (uint64_t)new_cap * size;
     *cap = new_cap;
     return grown;
 }

@@ -268,7 +268,10 @@ load_gltf_file(
         return fail(p, t, "cannot load mesh '%s': %s", name, how);
     }
     struct diag gerr = {.line = 0};
-    if (!gltf_load(path, out, &gerr)) {
+    /* The mesh's own arrays count against what the scene has left; the
+     * scene's copy of them is counted again by grow(). */
+    uint64_t left = p->max_bytes > p->bytes ? p->max_bytes - p->bytes : 0;
+    if (!gltf_load_limited(path, left, out, &gerr)) {
         return fail(p, t, "cannot load mesh '%s': %s", name, gerr.msg);
     }
     return true;

@@ -84,6 +84,9 @@ struct parser {
     struct {
         int materials, spheres, quads, positions, normals, triangles, points, areas, sphere_lights;
     } cap;
+
+    uint64_t bytes; /* held by the scene's arrays (their capacities) */
+    uint64_t max_bytes; /* the most they may hold (scene_load_limited) */
 };
 
 /* --- Errors and tokens (scene_lexer.c) ------------------------------------ */

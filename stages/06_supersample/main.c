@@ -149,7 +149,7 @@ main(int argc, char **argv)
     renderer.scene = &run.scene;
     renderer.world = world_make(&run.scene);
     if (!build_acceleration(&renderer, use_bvh, &run.rep, &err)) {
-        return run_fail(&run, &err, EXIT_INPUT);
+        return run_fail(&run, &err, EXIT_RESOURCES);
     }
     int status = render(&renderer, &run);
     world_free(&renderer.world);

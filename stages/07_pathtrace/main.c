@@ -194,7 +194,7 @@ main(int argc, char **argv)
     if (!light_picker_build(&renderer.lights, &run.scene, &err)
         || !build_acceleration(&renderer, use_bvh, &run.rep, &err)) {
         light_picker_free(&renderer.lights);
-        return run_fail(&run, &err, EXIT_INPUT);
+        return run_fail(&run, &err, EXIT_RESOURCES);
     }
     int status = render(&renderer, &run);
     light_picker_free(&renderer.lights);

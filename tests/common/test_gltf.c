@@ -1517,6 +1517,40 @@ TEST(external_buffers_symlinks)
     check_refused(gltf_with_uri("up/secret.bin"), "symbolic link");
 }
 
+/* Ten nodes instancing a one-triangle mesh without normals need
+ * 10 x (3 vertices x 3 doubles + 3 indices) = 840 bytes: refused under
+ * that, loaded at it. */
+TEST(memory_limit)
+{
+    REQUIRE_GLTF();
+    char json[4096];
+    size_t len = (size_t)sprintf(
+        json,
+        "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[0,1,2,3,4,5,6,7,8,9]}],"
+        "\"nodes\":[");
+    for (int i = 0; i < 10; i++) {
+        len += (size_t)sprintf(json + len, "%s{\"mesh\":0}", i ? "," : "");
+    }
+    strcat(
+        json,
+        "],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
+        "\"accessors\":[" TRI_POSITIONS "],\"bufferViews\":[" TRI_VIEW_POS "],"
+        "\"buffers\":[{\"byteLength\":36}]}");
+    unsigned char bin[36] = {0};
+    const char *path = test_tmp_path("instanced.glb");
+    CHECK(write_glb(path, json, bin, sizeof bin));
+    uint64_t need = 10 * (3 * 3 * sizeof(double) + 3 * sizeof(unsigned));
+    struct gltf_mesh m = {0};
+    struct diag err = {0};
+    CHECK(!gltf_load_limited(path, need - 1, &m, &err));
+    CHECK_MSG(strstr(err.msg, "30 vertices and 10 triangles") != NULL, "%s", err.msg);
+    CHECK_MSG(strstr(err.msg, "--max-memory") != NULL, "%s", err.msg);
+    CHECK(m.positions == NULL && m.n_vertices == 0);
+    CHECK_MSG(gltf_load_limited(path, need, &m, &err), "%s", err.msg);
+    CHECK(m.n_triangles == 10);
+    gltf_free(&m);
+}
+
 TEST(data_uri)
 {
     REQUIRE_GLTF();
@@ -1686,6 +1720,7 @@ TEST_MAIN(
     TEST_ENTRY(external_buffers_inside),
     TEST_ENTRY(external_buffers_outside),
     TEST_ENTRY(external_buffers_symlinks),
+    TEST_ENTRY(memory_limit),
     TEST_ENTRY(data_uri),
     TEST_ENTRY(size_limit),
     TEST_ENTRY(mutation_fuzz))

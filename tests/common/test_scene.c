@@ -770,6 +770,44 @@ TEST(too_many_materials)
     free(text);
 }
 
+/* 30000 spheres (1.2 MB of arrays) against a 1 MiB limit: the error names
+ * the first sphere that does not fit, computed from the array sizes (the
+ * materials array holds 16 entries, the least it allocates). */
+TEST(memory_limit)
+{
+    int n = 30000;
+    size_t cap = (size_t)n * 64 + 256;
+    char *text = malloc(cap);
+    size_t used = (size_t)snprintf(text, cap, HEADER WHITE);
+    for (int i = 0; i < n; i++) {
+        used += (size_t)snprintf(
+            text + used,
+            cap - used,
+            "sphere center %d 0 0 radius 0.5 material white\n",
+            i);
+    }
+    const char *path = test_tmp_path("many_spheres.scene");
+    CHECK(test_write_file(path, text));
+    uint64_t limit = 1 << 20;
+    uint64_t fit = (limit - 16 * sizeof(struct material)) / sizeof(struct sphere);
+    struct scene s;
+    struct diag err = {.line = 0};
+    CHECK(!scene_load_limited(path, limit, &s, &err));
+    CHECK_MSG(err.line == (int)(3 + fit + 1), "line %d, expected %d", err.line, (int)(4 + fit));
+    CHECK_MSG(strstr(err.msg, "memory limit of 1 MiB") != NULL, "%s", err.msg);
+    CHECK_MSG(strstr(err.msg, "--max-memory") != NULL, "%s", err.msg);
+    CHECK(s.spheres == NULL && s.n_spheres == 0);
+    /* Twice the limit is enough, and the arrays stay within it. */
+    CHECK(scene_load_limited(path, 2 * limit, &s, &err));
+    CHECK(s.n_spheres == n);
+    CHECK(scene_bytes(&s) <= 2 * limit);
+    scene_free(&s);
+    CHECK(scene_load(path, &s, &err));
+    CHECK(s.n_spheres == n);
+    scene_free(&s);
+    free(text);
+}
+
 TEST(file_errors)
 {
     struct scene s;
@@ -1074,6 +1112,7 @@ TEST_MAIN(
     TEST_ENTRY(camera_checks),
     TEST_ENTRY(area_light_checks),
     TEST_ENTRY(too_many_materials),
+    TEST_ENTRY(memory_limit),
     TEST_ENTRY(file_errors),
     TEST_ENTRY(mesh_paths),
     TEST_ENTRY(mesh_transform),

@@ -33,8 +33,14 @@ check_options(const struct options *opt, const struct knobs *k)
         fuzz_fail("CLI_OK without a scene");
     }
     if (opt->width < 0 || opt->width > 16384 || opt->height < 0 || opt->height > 16384
-        || opt->spp < 0 || opt->threads < 0 || opt->threads > 1024) {
-        fuzz_fail("-W %d -H %d --spp %d -t %d", opt->width, opt->height, opt->spp, opt->threads);
+        || opt->spp < 0 || opt->threads < 0 || opt->threads > 1024 || opt->max_memory_mib < 1) {
+        fuzz_fail(
+            "-W %d -H %d --spp %d -t %d --max-memory %d",
+            opt->width,
+            opt->height,
+            opt->spp,
+            opt->threads,
+            opt->max_memory_mib);
     }
     if (k->shadow_samples < 1 || k->max_depth < 1 || k->aa < 0 || k->aa > 2
         || !(k->aa_threshold >= 0 && k->aa_threshold <= 1)
