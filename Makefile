@@ -18,6 +18,7 @@
 #   make diffs      docs/diffs/*.diff and the diff table; make branches OUT=dir
 #   make check-labs every check of every handout (make test runs the quick ones)
 #   make clean
+#   make help       one line per target
 # Knobs: REAL=float (single precision, build/float/), CFLAGS=..., WERROR=1,
 # OPENEXR=0|1, TINYGLTF=0|1.  See common/config.mk.
 override ROOT := $(abspath .)
@@ -109,8 +110,8 @@ docs-images: all
 
 # Coursework: lab handouts, grading, stage diffs (tests/lab/README.md).
 lab:
-	@if [ -z "$(STAGE)" ] || [ -z "$(OUT)" ]; then echo "usage: make lab STAGE=05 OUT=path [SOLUTION=1]" >&2; exit 2; fi
-	@tests/lab/make-lab.sh $(if $(filter 1,$(SOLUTION)),--solution) "$(STAGE)" "$(OUT)"
+	@if [ -z "$(STAGE)" ] || [ -z "$(OUT)" ]; then echo "usage: make lab STAGE=05 OUT=path [SOLUTION=1] [FORCE=1]" >&2; exit 2; fi
+	@tests/lab/make-lab.sh $(if $(filter 1,$(SOLUTION)),--solution) $(if $(filter 1,$(FORCE)),--force) "$(STAGE)" "$(OUT)"
 
 grade:
 	@if [ -z "$(LAB)" ]; then echo "usage: make grade LAB=path" >&2; exit 2; fi
@@ -129,4 +130,31 @@ check-labs: all
 clean:
 	rm -rf build
 
-.PHONY: all models common tools test sanitize fuzz config demo gallery trade bench docs-images clean lab grade diffs branches check-labs $(STAGES)
+# make help: one line per target (tests/lab/test-lab-tools.sh checks that
+# every target of .PHONY has its line).
+help:
+	@printf '%s\n' \
+	'make                  build everything: common core, stages (build/NN_name/render), tools, models' \
+	'make all              the same' \
+	'make NN_name          one stage, e.g. make 05_bvh' \
+	'make common           the common core (build/common/libcommon.a)' \
+	'make tools            the command-line tools of tests/tools/ (build/tools/)' \
+	'make models           the generated 1.08M-triangle Buddha (build/models/, needs tinygltf)' \
+	'make test             every test; the last line is "N passed, N failed, N skipped"' \
+	'make sanitize         the tests built with AddressSanitizer and UBSan' \
+	'make fuzz             every parser under libFuzzer for FUZZ_SECONDS each (clang)' \
+	'make config           what the build found (OpenEXR, tinygltf)' \
+	'make demo             the showcase and reference scenes through every stage into out/' \
+	'make gallery          scenes/README.md: every scene of the library, rendered (scenes/make-gallery.sh)' \
+	'make trade            speed against accuracy of every stage (docs/trade/; QUICK=1: short)' \
+	'make bench            BVH build and trace rates, against brute force and Embree' \
+	'make docs-images      the lessons'"'"' pictures (docs/images/)' \
+	'make lab STAGE=NN OUT=dir   a lab handout (SOLUTION=1 the instructor'"'"'s; FORCE=1 moves a changed one aside)' \
+	'make grade LAB=dir    build a handout, run its tests, score them' \
+	'make diffs            docs/diffs/*.diff and the diff table of docs/README.md' \
+	'make branches OUT=dir the stages as a git repository, one commit per stage (FORCE=1 replaces)' \
+	'make check-labs       every check of every lab handout' \
+	'make clean            remove build/' \
+	'make help             this list'
+
+.PHONY: all models common tools test sanitize fuzz config demo gallery trade bench docs-images clean lab grade diffs branches check-labs help $(STAGES)

@@ -243,7 +243,7 @@ check_solution() {
             grep -v ' 0 failed' "$csl_logs/solution-tests" | detail
         fi
     fi
-    "$LAB_DIR/make-lab.sh" --quiet --root "$root" "$csl_stage" "$csl_dir" 2>/dev/null ||
+    "$LAB_DIR/make-lab.sh" --quiet --discard-changes --root "$root" "$csl_stage" "$csl_dir" 2>/dev/null ||
         warn "could not restore the handout in $csl_dir"
 }
 
@@ -253,7 +253,7 @@ write_handout() {
     wh_dir=$out/${wh_stage%%_*}
     wh_log=$out/logs/${wh_stage%%_*}/make-lab.log
     mkdir -p "${wh_log%/*}"
-    if "$LAB_DIR/make-lab.sh" --quiet --root "$root" "$wh_stage" "$wh_dir" 2>"$wh_log"; then
+    if "$LAB_DIR/make-lab.sh" --quiet --discard-changes --root "$root" "$wh_stage" "$wh_dir" 2>"$wh_log"; then
         share_builds "$wh_dir"
         [ -s "$wh_log" ] && echo warned || echo ok
     else

@@ -16,16 +16,23 @@
 #                    to write code, and the tests
 # The marker format is in tests/lab/README.md.  OUT must not exist, be
 # empty, or hold an earlier handout, which is updated in place: files that
-# did not change keep their dates, so rebuilding it is quick.
+# did not change keep their dates, so rebuilding it is quick.  An earlier
+# handout someone changed (a file edited, added or removed since make-lab.sh
+# wrote it, as its list .stagelight-handout records; build/ aside) is a
+# student's work: it is refused (exit 2, naming the files) unless --force,
+# which first moves it aside to OUT.old-DATE and says so.
 #
 # Options:
+#   --force      move a changed handout aside instead of refusing
+#   --discard-changes  overwrite a changed handout (for check-labs.sh, which
+#                puts the solution into its own handouts and back)
 #   --solution   keep the solution and all markers (an instructor's copy)
 #   --strict     warnings (no Lab section, no LAB NN region, a missing
 #                linked file) are errors
 #   --quiet      print nothing on success
 #   --root DIR   the project (default: the one this script belongs to)
 #   --help       this text
-# Exit status: 0 written, 1 error, 2 usage.
+# Exit status: 0 written, 1 error, 2 usage or a changed handout refused.
 set -eu
 
 PROG=make-lab.sh
@@ -34,12 +41,16 @@ LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 
 root=$(cd "$LAB_DIR/../.." && pwd)
 solution=0
+force=0
+discard=0
 strict=0
 quiet=0
 while [ $# -gt 0 ]; do
     case $1 in
         -h | --help) show_help "$0"; exit 0 ;;
         --solution) solution=1 ;;
+        --force) force=1 ;;
+        --discard-changes) discard=1 ;;
         --strict) strict=1 ;;
         --quiet) quiet=1 ;;
         --root)
@@ -61,7 +72,7 @@ nn=${stage%%_*}
 out=$2
 page=docs/stages/$stage.md
 tmp=
-trap 'if [ -n "$tmp" ]; then rm -rf "$tmp"; fi' EXIT
+trap 'if [ -n "$tmp" ]; then rm -rf "$tmp" "$tmp.list" "$tmp.now"; fi' EXIT
 trap 'exit 1' HUP INT TERM
 
 # A warning, or under --strict an error.
@@ -227,6 +238,57 @@ write_labmd() {
     rm -f "$tmp/.assets" "$tmp/.section"
 }
 
+# The list of a handout's files with their checksums (build/ and the list
+# itself left out), sorted: "CRC SIZE ./path" lines.
+file_list() {
+    (cd "$1" && find . -path ./build -prune -o -type f ! -name "$MANIFEST" -print |
+        while IFS= read -r fl_f; do cksum "$fl_f"; done) | LC_ALL=C sort
+}
+
+# The files of OUT that differ from what make-lab.sh last wrote there (its
+# list), or, for a handout written before the list existed, from the fresh
+# handout: changed, added or removed, one per line.
+changed_files() {
+    if [ -f "$out/$MANIFEST" ]; then
+        cf_was=$out/$MANIFEST
+    else
+        cf_was=$tmp/$MANIFEST
+    fi
+    file_list "$out" >"$tmp.now"
+    LC_ALL=C comm -3 "$cf_was" "$tmp.now" |
+        sed 's/^[[:space:]]*[0-9]* [0-9]* \.\///' | LC_ALL=C sort -u
+    rm -f "$tmp.now"
+}
+
+# An earlier handout with changes in it is someone's work: refuse, or with
+# --force move it aside first.
+protect_changes() {
+    [ -d "$out" ] && is_handout "$out" || return 0
+    [ "$discard" -eq 1 ] && return 0
+    pc_changed=$(changed_files)
+    [ -n "$pc_changed" ] || return 0
+    if [ "$force" -eq 0 ]; then
+        pc_n=$(printf '%s\n' "$pc_changed" | wc -l | tr -d ' ')
+        {
+            printf '%s: %s holds a handout with changes (%s file(s) edited, added or removed):\n' \
+                "$PROG" "$out" "$pc_n"
+            printf '%s\n' "$pc_changed" | head -n 20 | sed 's/^/    /'
+            [ "$pc_n" -le 20 ] || printf '    ... and %s more\n' $((pc_n - 20))
+            printf '%s: refusing to overwrite them; FORCE=1 (make-lab.sh --force) moves %s aside first\n' \
+                "$PROG" "$out"
+        } >&2
+        exit 2
+    fi
+    pc_aside=$out.old-$(date +%Y%m%d-%H%M%S)
+    pc_i=1
+    while [ -e "$pc_aside" ]; do
+        pc_aside=$out.old-$(date +%Y%m%d-%H%M%S)-$pc_i
+        pc_i=$((pc_i + 1))
+    done
+    mv "$out" "$pc_aside" || die "cannot move $out aside to $pc_aside"
+    echo "$PROG: $out had changes; moved it to $pc_aside"
+}
+
 # Make OUT's files equal to the fresh handout's, touching only those that
 # differ; OUT/build is left alone.
 sync_out() {
@@ -249,6 +311,7 @@ sync_out() {
         done
 }
 
+MANIFEST=.stagelight-handout
 check_out
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/make-lab.XXXXXX")
 write_stage
@@ -257,6 +320,8 @@ copy_files "$root/scenes" "$tmp/scenes"
 write_tests
 write_makefile
 write_labmd
+file_list "$tmp" >"$tmp.list" && mv "$tmp.list" "$tmp/$MANIFEST"
+protect_changes
 sync_out
 if [ "$quiet" -eq 0 ]; then
     kind=handout

@@ -368,6 +368,7 @@ test_make_lab() {
     (cd "$H" && find . -type f | sed 's|^\./||' | LC_ALL=C sort) >"$T/files"
     cat >"$T/files.expected" <<'EOF'
 .gitignore
+.stagelight-handout
 LAB.md
 Makefile
 common/x.h
@@ -413,12 +414,33 @@ EOF
     sleep 1
     printf '/* common, changed */\n' >"$M/common/x.h"
     "$LAB_DIR/make-lab.sh" --quiet --root "$M" 02_b "$H" >/dev/null 2>&1 || true
-    newer=$(cd "$H" && find . -type f -newer "$T/stamp" | sed 's|^\./||')
-    if [ "$newer" = common/x.h ] && [ -f "$H/build/x/keep" ]; then
+    newer=$(cd "$H" && find . -type f -newer "$T/stamp" | sed 's|^\./||' | LC_ALL=C sort | tr '\n' ' ')
+    if [ "$newer" = ".stagelight-handout common/x.h " ] && [ -f "$H/build/x/keep" ]; then
         ok make-lab/update-in-place
     else
         fail make-lab/update-in-place "newer files: $newer"
     fi
+    # A student's work in the handout (an edit, a new file, a removed one)
+    # is refused, naming the files; --force moves it aside, and says where.
+    printf '/* mine */\n' >>"$H/stages/02_b/main.c"
+    printf 'notes\n' >"$H/mynotes.txt"
+    rm "$H/LAB.md"
+    expect_exit make-lab/refuses-changes 2 'stages/02_b/main.c' "$LAB_DIR/make-lab.sh" --root "$M" 02 "$H"
+    if grep -q '^    mynotes.txt$' "$T/ee.out" && grep -q '^    LAB.md$' "$T/ee.out" &&
+        grep -q mine "$H/stages/02_b/main.c" && [ -f "$H/mynotes.txt" ]; then
+        ok make-lab/refusal-keeps-work
+    else
+        fail make-lab/refusal-keeps-work "$(cat "$T/ee.out")"
+    fi
+    "$LAB_DIR/make-lab.sh" --force --root "$M" 02 "$H" >"$T/force.out" 2>&1 || true
+    aside=$(sed -n 's/.*moved it to //p' "$T/force.out")
+    if [ -n "$aside" ] && grep -q mine "$aside/stages/02_b/main.c" && [ -f "$aside/mynotes.txt" ] &&
+        [ -f "$H/LAB.md" ] && [ ! -e "$H/mynotes.txt" ] && ! grep -q mine "$H/stages/02_b/main.c"; then
+        ok make-lab/force-moves-aside
+    else
+        fail make-lab/force-moves-aside "$(cat "$T/force.out")"
+    fi
+    check make-lab/unchanged-again "$LAB_DIR/make-lab.sh" --quiet --root "$M" 02 "$H"
     check make-lab/solution "$LAB_DIR/make-lab.sh" --solution --quiet --root "$M" 02 "$T/solution"
     if grep -q six_times "$T/solution/stages/02_b/main.c"; then ok make-lab/solution-kept; else fail make-lab/solution-kept; fi
     # Errors: exit 1 with a message; usage: exit 2.
@@ -532,7 +554,51 @@ test_grade_pages() {
     done
 }
 
+# make docs-images in a build without glTF: the mesh image is skipped with
+# a note and the others are rendered (a stand-in render that answers as
+# such a build does for a scene with a mesh).
+test_docs_images() {
+    di_root=$(cd "$LAB_DIR/../.." && pwd)
+    if [ ! -x "$di_root/build/05_bvh/render" ] || [ ! -x "$di_root/build/tools/gen_meshes" ]; then
+        fail docs-images/skips-what-needs-a-missing-library "build the project first (make)"
+        return 0
+    fi
+    mkdir -p "$T/nogltf/05_bvh"
+    ln -s "$di_root/build/tools" "$T/nogltf/tools"
+    cat >"$T/nogltf/05_bvh/render" <<EOF
+#!/bin/sh
+for a in "\$@"; do
+    if [ -f "\$a" ] && grep -q '^mesh ' "\$a"; then
+        echo "\$a:1:1: error: cannot load mesh: this build has no glTF support: install libtinygltf-dev and rebuild" >&2
+        exit 1
+    fi
+done
+exec "$di_root/build/05_bvh/render" "\$@"
+EOF
+    chmod +x "$T/nogltf/05_bvh/render"
+    di_status=0
+    BUILD=$T/nogltf IMAGES=$T/images "$di_root/docs/make-images.sh" 05 >"$T/di.out" 2>&1 || di_status=$?
+    if [ "$di_status" -eq 0 ] && grep -q 'skipped .*05_bvh_terrain.png: no glTF support' "$T/di.out" &&
+        [ -f "$T/images/05_bvh_showcase.png" ] && [ ! -e "$T/images/05_bvh_terrain.png" ]; then
+        ok docs-images/skips-what-needs-a-missing-library
+    else
+        fail docs-images/skips-what-needs-a-missing-library "exit $di_status" "$(cat "$T/di.out")"
+    fi
+}
+
 test_help() {
+    # make help has a line for every target of the top-level Makefile.
+    hp_root=$(cd "$LAB_DIR/../.." && pwd)
+    make -s --no-print-directory -C "$hp_root" help >"$T/make-help" 2>&1 || true
+    hp_missing=
+    for hp_t in $(sed -n 's/^\.PHONY: *//p' "$hp_root/Makefile" | tr ' ' '\n' | grep -v '^\$'); do
+        grep -q "^make $hp_t\( \|$\)" "$T/make-help" || hp_missing="$hp_missing $hp_t"
+    done
+    if [ -z "$hp_missing" ] && [ -s "$T/make-help" ]; then
+        ok help/make-help
+    else
+        fail help/make-help "no line for:$hp_missing" "$(cat "$T/make-help")"
+    fi
     for hp_s in make-lab grade grade-pages make-diffs check-diffs check-labs make-branches test-lab-tools; do
         if "$LAB_DIR/$hp_s.sh" --help 2>&1 | head -n 1 | grep -q "^$hp_s.sh - "; then
             ok "help/$hp_s"
@@ -558,6 +624,7 @@ if command -v git >/dev/null 2>&1; then
     test_branches
 fi
 test_grade_pages
+test_docs_images
 test_help
 echo "$passed passed, $failed failed, 0 skipped"
 [ "$failed" -eq 0 ]
