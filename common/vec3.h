@@ -13,6 +13,7 @@
 #define VEC3_H
 
 #include <assert.h>
+#include <float.h>
 #include <stdbool.h>
 #include <tgmath.h>
 
@@ -222,6 +223,29 @@ onb_to_world(struct onb basis, vec3 local)
     vec3 w = vec3_scale(basis.s, local.x);
     w = vec3_madd(w, basis.t, local.y);
     return vec3_madd(w, basis.n, local.z);
+}
+
+/* The largest float <= x (-infinity for NaN): rounding outward, so that a
+ * box stored in float (the BVH's, from stage 05 on) still contains the
+ * real-valued one. */
+static inline float
+float_below(real x)
+{
+    if (!(x > -FLT_MAX)) {
+        return -INFINITY;
+    }
+    if (x >= FLT_MAX) {
+        return FLT_MAX;
+    }
+    float f = (float)x;
+    return (real)f > x ? nextafterf(f, -INFINITY) : f;
+}
+
+/* The smallest float >= x. */
+static inline float
+float_above(real x)
+{
+    return -float_below(-x);
 }
 
 #endif /* VEC3_H */

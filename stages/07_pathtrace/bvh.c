@@ -4,8 +4,8 @@
  * Build (bvh_build): each primitive is reduced to the centre of its bounding
  * box; a node's primitives are split in two halves of equal count at the
  * median centroid along the axis where the centroids spread most.  The
- * median is found by selection (Hoare's FIND), not by sorting: O(n) per
- * level, O(n log n) in all.  Splitting by count needs no special case when
+ * median is found by selection (select.c), not by sorting: O(n) per level,
+ * O(n log n) in all.  Splitting by count needs no special case when
  * centroids coincide: they are split anyway, so every leaf holds at most
  * BVH_MAX_LEAF primitives and the tree has about log2(n) levels.  (This is
  * not the surface area heuristic of pbrt or Embree, which cuts where the
@@ -23,12 +23,11 @@
  */
 #include "bvh.h"
 
-#include <float.h>
 #include <limits.h>
 #include <stdlib.h>
-#include <string.h>
 
 #include "geometry.h"
+#include "select.h"
 
 static_assert(BVH_MAX_LEAF >= 1 && BVH_MAX_LEAF <= UINT16_MAX, "leaf counts are uint16_t");
 static_assert(BVH_MAX_DEPTH >= 33, "an int primitive count needs up to 32 levels");
@@ -46,22 +45,12 @@ static_assert(BVH_MAX_DEPTH >= 33, "an int primitive count needs up to 32 levels
  */
 #define MARGIN_EPSILONS 256
 
-/* Ranges at most this long are finished by insertion sort. */
-#define SELECT_SMALL 16
-
 /* "No node": the traversal's answer when the ray misses both children. */
 #define NO_NODE UINT32_MAX
 
 /* An axis-aligned box in the working precision. */
 struct box {
     vec3 lo, hi;
-};
-
-/* What the build rearranges: a primitive and its centroid, 16 bytes, so the
- * selection moves little memory and reads it in order. */
-struct build_ref {
-    float centroid[3];
-    int prim;
 };
 
 /* LAB 05: BVH build */
@@ -144,122 +133,7 @@ prim_bounds(const struct world *w, int prim)
     return parallelogram_bounds(light->corner, light->edge1, light->edge2);
 }
 
-/* The largest float <= x (-infinity for NaN), so that a box stored in
- * float still contains the real-valued one. */
-static float
-float_below(real x)
-{
-    if (!(x > -FLT_MAX)) {
-        return -INFINITY;
-    }
-    if (x >= FLT_MAX) {
-        return FLT_MAX;
-    }
-    float f = (float)x;
-    return (real)f > x ? nextafterf(f, -INFINITY) : f;
-}
-
-/* The smallest float >= x. */
-static float
-float_above(real x)
-{
-    return -float_below(-x);
-}
-
-/* --- the median split ----------------------------------------------------- */
-
-/* Whole 16-byte copies: assigned field by field, a record that the
- * partition reads back 16 bytes at once would wait for its pieces to reach
- * memory (a failed store forwarding: it halved the build's speed). */
-static void
-swap_refs(struct build_ref *a, struct build_ref *b)
-{
-    struct build_ref tmp;
-    memcpy(&tmp, a, sizeof tmp);
-    memcpy(a, b, sizeof tmp);
-    memcpy(b, &tmp, sizeof tmp);
-}
-
-/* Order refs[lo], refs[mid], refs[hi] by key and return the middle key: a
- * pivot that is not the range's extreme unless keys repeat. */
-static float
-median_of_three(struct build_ref *refs, int lo, int hi, int axis)
-{
-    int mid = lo + (hi - lo) / 2;
-    if (refs[mid].centroid[axis] < refs[lo].centroid[axis]) {
-        swap_refs(&refs[mid], &refs[lo]);
-    }
-    if (refs[hi].centroid[axis] < refs[lo].centroid[axis]) {
-        swap_refs(&refs[hi], &refs[lo]);
-    }
-    if (refs[hi].centroid[axis] < refs[mid].centroid[axis]) {
-        swap_refs(&refs[hi], &refs[mid]);
-    }
-    return refs[mid].centroid[axis];
-}
-
-/*
- * Move the refs of refs[lo, hi] whose key is below the pivot (or equal to
- * it, when or_equal) to the front; returns where the others start.  Lomuto's
- * partition written without a branch on the key: every element is swapped
- * and the boundary moves by 0 or 1.  On random keys a branch would be
- * mispredicted half the time, which costs more than the whole loop body.
- */
-static int
-partition(struct build_ref *refs, int lo, int hi, int axis, float pivot, bool or_equal)
-{
-    int j = lo;
-    for (int i = lo; i <= hi; i++) {
-        float key = refs[i].centroid[axis];
-        int goes_first = (key < pivot) | (or_equal & (key == pivot)); /* | and &: no branch */
-        swap_refs(&refs[i], &refs[j]);
-        j += goes_first;
-    }
-    return j;
-}
-
-static void
-insertion_sort(struct build_ref *refs, int lo, int hi, int axis)
-{
-    for (int i = lo + 1; i <= hi; i++) {
-        struct build_ref r = refs[i];
-        int j = i;
-        for (; j > lo && refs[j - 1].centroid[axis] > r.centroid[axis]; j--) {
-            refs[j] = refs[j - 1];
-        }
-        refs[j] = r;
-    }
-}
-
-/*
- * Rearrange refs[0, n) so that refs[k] is the element a sort by
- * centroid[axis] would put there, none before it greater and none after it
- * smaller: quickselect (Hoare's FIND, CACM 4(7), 1961), expected O(n).  Each
- * round splits the range into keys below the pivot, equal to it and above it
- * (the second pass only when k is not below), and keeps the part holding k.
- * The equal part is never empty, so every round shrinks the range, even
- * when all the keys are equal (all centroids coincide).
- */
-static void
-split_median(struct build_ref *refs, int n, int k, int axis)
-{
-    int lo = 0;
-    int hi = n - 1;
-    while (hi - lo > SELECT_SMALL) {
-        float pivot = median_of_three(refs, lo, hi, axis);
-        int equal = partition(refs, lo, hi, axis, pivot, false);
-        if (k < equal) {
-            hi = equal - 1;
-            continue;
-        }
-        int above = partition(refs, equal, hi, axis, pivot, true);
-        if (k < above) {
-            return;
-        }
-        lo = above;
-    }
-    insertion_sort(refs, lo, hi, axis);
-}
+/* --- the split axis ------------------------------------------------------- */
 
 /* The axis along which the centroids of refs[0, n) spread most (x on ties,
  * including when they all coincide). */
@@ -319,7 +193,7 @@ build_subtree(struct bvh *bvh, struct build_ref *refs, int begin, int end, int d
     }
     int axis = widest_centroid_axis(refs + begin, end - begin);
     int mid = begin + (end - begin) / 2;
-    split_median(refs + begin, end - begin, mid - begin, axis);
+    select_kth(refs + begin, end - begin, mid - begin, axis);
     build_subtree(bvh, refs, begin, mid, depth + 1); /* the first child: node id + 1 */
     uint32_t second = build_subtree(bvh, refs, mid, end, depth + 1);
     bvh->nodes[id] = (struct bvh_node){.index = second, .axis = (uint8_t)axis};

@@ -19,6 +19,10 @@
      | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS) | FEATURE_BIT(FEAT_BLEND) \
      | FEATURE_BIT(FEAT_CHECKER) | FEATURE_BIT(FEAT_ENVIRONMENT) | FEATURE_BIT(FEAT_SPHERE_LIGHT))
 
+/* Scenes of at most this many primitives are traced without a BVH
+ * (--brute-force-max; main.c says why). */
+#define BRUTE_FORCE_MAX_PRIMS 16
+
 /* Russian roulette starts once a path has this many rays (camera ray = 1). */
 #define RR_MIN_DEPTH 3
 

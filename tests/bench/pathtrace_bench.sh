@@ -1,57 +1,161 @@
 #!/bin/sh
-# pathtrace_bench.sh - how fast stage 07 converges on the Cornell scenes.
+# pathtrace_bench.sh - how fast stage 07 converges on the Cornell scenes,
+# beside Mitsuba 3 when it can be had.
 #
-# Prints, for each reference scene: paths (camera samples) per second with
-# 1 and 2 threads, and spp x relMSE against Mitsuba's converged image (a
-# constant for an unbiased estimator: relMSE falls as 1/spp).  For
-# cornell_diffuse_area, the seconds stage 07 needs to reach relMSE 1e-3 at
-# 256x256 (2 threads): predicted from that constant and the measured time
-# per sample, then checked by rendering at the predicted spp.
+# For each scene: spp x relMSE against Mitsuba's converged reference (a
+# constant for an unbiased estimator: relMSE falls as 1/spp), seconds per
+# spp at 256x256 on 2 threads, and from the two the time to reach the
+# scene's target relMSE (1e-3; 1e-2 for the caustics of
+# cornell_specular_area).  Mitsuba 3 (`path` integrator, independent
+# sampler; variants llvm_ad_rgb and scalar_rgb) renders the same scenes
+# (tests/bench/mitsuba_render.py translates them), interleaved with ours:
+# each round renders every renderer once, ROUNDS rounds, and each
+# renderer's fastest round counts (the machine is shared: the fastest round
+# is the one least disturbed).  Times are wall-clock; the processor time
+# of all threads is printed beside them (steadier on a loaded machine).
+# Last, cornell_diffuse_area is rendered by stage 07 at the spp predicted
+# for relMSE 1e-3, to check the prediction.
+#
+# Mitsuba is looked for in build/mitsuba-venv (make it with
+#   python3 -m venv build/mitsuba-venv
+#   build/mitsuba-venv/bin/pip install mitsuba numpy
+# ); its LLVM variant needs an LLVM shared library of version 16 or later
+# (Debian: apt-get install libllvm19), found in /usr/lib or given by
+# DRJIT_LIBLLVM_PATH.  Without Mitsuba the script says so and prints
+# stage 07 alone.
 #
 # Times, so never part of `make test`.  Run from the project root after
-# `make` and `make -C tests tools`:  sh tests/bench/pathtrace_bench.sh
+# `make`:  sh tests/bench/pathtrace_bench.sh   (SPP, ROUNDS, SCENES to
+# change the defaults 32, 2 and the three reference scenes).
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 render=$root/build/07_pathtrace/render
 imgcmp=$root/build/tools/imgcmp
-work=${TMPDIR:-/tmp}/pathtrace-bench.$$
-mkdir -p "$work"
-trap 'rm -rf "$work"' EXIT INT TERM
+python=$root/build/mitsuba-venv/bin/python
+spp=${SPP:-32}
+rounds=${ROUNDS:-2}
+scenes=${SCENES:-cornell_diffuse_area cornell_specular_area cornell_diffuse_point}
+work=$(mktemp -d "${TMPDIR:-/tmp}/pathtrace-bench.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+trap 'exit 130' INT TERM
+
+[ -x "$render" ] && [ -x "$imgcmp" ] || {
+    echo "pathtrace_bench.sh: run make first" >&2
+    exit 2
+}
 
 # stat FILE KEY: a number from a --stats JSON file.
 stat() {
     sed -n "s/.*\"$2\": \([-0-9.e+]*\).*/\1/p" "$1" | head -n 1
 }
 
-# run SCENE THREADS SPP: render, print "seconds paths_per_second relmse".
-run() {
-    "$render" -q -t "$2" --spp "$3" --seed 7 -o "$work/img.pfm" --stats "$work/s.json" \
-        "$root/scenes/$1.scene"
-    seconds=$(stat "$work/s.json" seconds_render)
-    paths=$(stat "$work/s.json" rays_camera)
-    relmse=$("$imgcmp" --csv "$work/img.pfm" "$root/tests/reference/${1}_gi.pfm" |
+# relmse IMAGE SCENE: relMSE of IMAGE against the scene's GI reference.
+relmse() {
+    "$imgcmp" --csv "$1" "$root/tests/reference/${2}_gi.pfm" |
         awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "relmse") c = i }
-                 NR == 2 { print $c }')
-    echo "$seconds $(awk -v p="$paths" -v s="$seconds" 'BEGIN { printf "%.0f", p / s }') $relmse"
+                 NR == 2 { print $c }'
 }
 
-[ -x "$render" ] && [ -x "$imgcmp" ] || {
-    echo "pathtrace_bench.sh: run make and make -C tests tools first" >&2
-    exit 2
+# target SCENE: the relMSE the scene is timed to.
+target() {
+    case $1 in
+    cornell_specular_area) echo 1e-2 ;;
+    *) echo 1e-3 ;;
+    esac
 }
-echo "stage 07 path tracing, 256x256, load average $(cut -d' ' -f1-3 /proc/loadavg)"
-printf '%-24s %14s %14s %16s\n' scene "paths/s (1 t)" "paths/s (2 t)" "spp x relMSE"
-for scene in cornell_diffuse_area cornell_diffuse_point cornell_specular_area; do
-    one=$(run "$scene" 1 16)
-    two=$(run "$scene" 2 64)
-    printf '%-24s %14s %14s %16s\n' "$scene" "$(echo "$one" | cut -d' ' -f2)" \
-        "$(echo "$two" | cut -d' ' -f2)" "$(echo "$two" | awk '{ printf "%.3f", $3 * 64 }')"
+
+# ours SCENE SPP SEED: "wall_seconds cpu_seconds relmse" of one stage-07 render.
+ours() {
+    "$render" -q -t 2 --spp "$2" --seed "$3" -o "$work/ours.pfm" --stats "$work/s.json" \
+        "$root/scenes/$1.scene"
+    echo "$(stat "$work/s.json" seconds_render) $(stat "$work/s.json" seconds_render_cpu)" \
+        "$(relmse "$work/ours.pfm" "$1")"
+}
+
+# mitsuba VARIANT SCENE SPP SEED: the same for Mitsuba (nothing if it fails).
+mitsuba() {
+    out=$("$python" "$root/tests/bench/mitsuba_render.py" "$1" "$root/scenes/$2.scene" \
+        "$3" "$4" 2 "$work/mi.pfm" 2>"$work/mi.err") || {
+        echo "  (mitsuba $1 failed: $(tail -n 1 "$work/mi.err"))" >&2
+        return 0
+    }
+    echo "$out" | awk '{ printf "%s %s ", $2, $4 }'
+    relmse "$work/mi.pfm" "$2"
+}
+
+# Mitsuba's variants that work here.
+variants=""
+if [ -x "$python" ] && "$python" -c 'import mitsuba, numpy' 2>/dev/null; then
+    if [ -z "${DRJIT_LIBLLVM_PATH:-}" ]; then
+        # The newest LLVM of 16 or later (15's x86 back end failed on
+        # Dr.Jit 1.5's kernels here; 14 is refused).
+        best=15
+        for lib in /usr/lib/*/libLLVM*.so* /usr/lib/llvm-*/lib/libLLVM*.so*; do
+            [ -f "$lib" ] || continue
+            v=$(echo "$lib" | sed -n 's/.*[Ll][Ll][Vv][Mm][^0-9]*\([0-9][0-9]*\).*/\1/p')
+            if [ -n "$v" ] && [ "$v" -gt "$best" ]; then
+                best=$v
+                DRJIT_LIBLLVM_PATH=$lib
+            fi
+        done
+        export DRJIT_LIBLLVM_PATH
+    fi
+    for v in llvm_ad_rgb scalar_rgb; do
+        if "$python" -c "import mitsuba as mi; mi.set_variant('$v')" 2>/dev/null; then
+            variants="$variants $v"
+        fi
+    done
+fi
+if [ -z "$variants" ]; then
+    echo "Mitsuba 3 is not available (build/mitsuba-venv; see the comment at the top of"
+    echo "tests/bench/pathtrace_bench.sh): stage 07 alone."
+else
+    echo "Mitsuba 3 $("$python" -c 'import mitsuba; print(mitsuba.__version__)'):$variants" \
+        "(LLVM: ${DRJIT_LIBLLVM_PATH:-none})"
+fi
+echo "256x256, 2 threads, $spp spp, best of $rounds interleaved rounds;" \
+    "load average $(cut -d' ' -f1-3 /proc/loadavg)"
+
+for scene in $scenes; do
+    : >"$work/rows"
+    for round in $(seq 1 "$rounds"); do
+        echo "stagelight_07 $(ours "$scene" "$spp" "$round")" >>"$work/rows"
+        for v in $variants; do
+            r=$(mitsuba "$v" "$scene" "$spp" "$round")
+            [ -z "$r" ] || echo "mitsuba_$v $r" >>"$work/rows"
+        done
+    done
+    t=$(target "$scene")
+    echo
+    echo "$scene (time to relMSE $t)"
+    awk -v spp="$spp" -v t="$t" '
+        { n[$1]++; c[$1] += $4 * spp
+          if (!($1 in w) || $2 < w[$1]) w[$1] = $2
+          if (!($1 in u) || $3 < u[$1]) u[$1] = $3
+          if (!seen[$1]++) order[++k] = $1 }
+        END {
+            printf "| %-22s | %12s | %10s | %14s | %16s | %13s |\n", "renderer",
+                "spp x relMSE", "s per spp", "cpu s per spp", "time to " t, "time / ours"
+            print "|---|---:|---:|---:|---:|---:|"
+            for (i = 1; i <= k; i++) {
+                r = order[i]; cc = c[r] / n[r]; s = w[r] / spp
+                tt[r] = cc / t * s
+            }
+            for (i = 1; i <= k; i++) {
+                r = order[i]; cc = c[r] / n[r]
+                printf "| %-22s | %12.4f | %10.4f | %14.4f | %14.2f s | %12.2fx |\n", r, cc,
+                    w[r] / spp, u[r] / spp, tt[r], tt[r] / tt["stagelight_07"]
+            }
+        }' "$work/rows"
     if [ "$scene" = cornell_diffuse_area ]; then
-        predicted=$(echo "$two" | awk '{ c = $3 * 64; spp = int(c / 1e-3 + 0.999);
-            printf "%d %.2f", spp, $1 / 64 * spp }')
-        spp=${predicted% *}
+        predict=$(awk -v spp="$spp" '$1 == "stagelight_07" { c += $4 * spp; n++ }
+            END { printf "%d", c / n / 1e-3 + 0.999 }' "$work/rows")
     fi
 done
-echo "cornell_diffuse_area to relMSE 1e-3 (2 threads): predicted ${predicted#* } s at $spp spp"
-check=$(run cornell_diffuse_area 2 "$spp")
-echo "  rendered at $spp spp: $(echo "$check" | awk '{ printf "%.2f s, relMSE %.2e", $1, $3 }')"
+
+if [ -n "${predict:-}" ]; then
+    check=$(ours cornell_diffuse_area "$predict" 99)
+    echo
+    echo "stage 07 on cornell_diffuse_area at the $predict spp predicted for relMSE 1e-3:" \
+        "$(echo "$check" | awk '{ printf "%.2f s (cpu %.2f s), relMSE %.2e", $1, $2, $3 }')"
+fi

@@ -126,9 +126,15 @@ emit_seeds() {
 }
 
 bvh_pairs() { # bvh_pairs N STAGE SCENE KNOBS: default knobs with and without BVH
-    local n=$1 seed on
+    local n=$1 seed on forced="" default=1
+    # A stage that skips the tree on small scenes (--brute-force-max) is
+    # made to build it, so that bvh=on is the tree on every scene.
+    if has "$2" --brute-force-max; then
+        forced=" brute=0"
+        default=0
+    fi
     for seed in $(seq 1 "$n"); do
-        emit "$2" "$3" "$4" "bvh=on" 1 "$seed" 1
+        emit "$2" "$3" "$4$forced" "bvh=on" 1 "$seed" "$default"
         on=$LAST_ID
         emit "$2" "$3" "$4 bvh=off" "bvh=off" 0 "$seed" 0 "$on"
     done
@@ -351,6 +357,7 @@ knob_args() {
         spp=*) args="$args --spp ${k#*=}" ;;
         aa=*) args="$args --aa ${k#*=}" ;;
         bvh=off) args="$args --no-bvh" ;;
+        brute=*) args="$args --brute-force-max ${k#*=}" ;;
         nee=off) args="$args --no-nee" ;;
         rr=off) args="$args --no-rr" ;;
         *)

@@ -1,0 +1,180 @@
+#!/usr/bin/env python3
+"""mitsuba_render.py - render a stagelight scene file with Mitsuba 3, timed.
+
+    mitsuba_render.py VARIANT SCENE SPP SEED THREADS OUT.pfm
+
+Translates the statements the reference scenes use (camera, image,
+material diffuse/mirror/glass, quad, sphere, area_light, point_light,
+triangle) into a Mitsuba scene as ../shared/reference/SCENES.md defines it
+(Mitsuba's `path` integrator, unbounded depth, Russian roulette from depth
+5, the independent sampler, a box filter of one pixel, two-sided surfaces,
+one-sided black area lights), renders it once unmeasured (the LLVM variant
+compiles its kernels then) and once measured, writes the measured image as
+a little-endian PFM (rows bottom to top) and prints "seconds S".
+
+Used by tests/bench/pathtrace_bench.sh; not part of make test.
+"""
+import sys
+import time
+
+import drjit as dr
+import mitsuba as mi
+import numpy as np
+
+
+def fail(msg):
+    sys.stderr.write("mitsuba_render.py: %s\n" % msg)
+    sys.exit(1)
+
+
+def floats(words, key, n=3):
+    i = words.index(key)
+    return [float(w) for w in words[i + 1:i + 1 + n]]
+
+
+def word(words, key):
+    return words[words.index(key) + 1]
+
+
+def parallelogram(corner, e1, e2):
+    """to_world of Mitsuba's rectangle ([-1,1]^2, normal +z) onto
+    corner + s e1 + t e2, s, t in [0, 1], facing cross(e1, e2)."""
+    c = np.array(corner)
+    a = np.array(e1)
+    b = np.array(e2)
+    n = np.cross(a, b)
+    n = n / np.linalg.norm(n)
+    m = np.identity(4)
+    m[:3, 0] = a / 2
+    m[:3, 1] = b / 2
+    m[:3, 2] = n
+    m[:3, 3] = c + a / 2 + b / 2
+    return mi.ScalarTransform4f(m.tolist())
+
+
+def rgb(v):
+    return {"type": "rgb", "value": v}
+
+
+def material(words):
+    kind = words[2]
+    if kind == "diffuse":
+        return {"type": "twosided",
+                "bsdf": {"type": "diffuse", "reflectance": rgb(floats(words, "albedo"))}}
+    if kind == "mirror":
+        return {"type": "twosided",
+                "bsdf": {"type": "conductor", "material": "none",
+                         "specular_reflectance": rgb(floats(words, "reflectance"))}}
+    if kind == "glass":
+        return {"type": "dielectric", "int_ior": float(word(words, "ior")), "ext_ior": 1.0}
+    fail("material kind %s is not translated" % kind)
+
+
+def load(path, spp, seed):
+    scene = {"type": "scene",
+             "integrator": {"type": "path", "max_depth": -1, "rr_depth": 5,
+                            "hide_emitters": False}}
+    materials = {}
+    width = height = 256
+    camera = None
+    n = 0
+    tri_v = []
+    tri_mat = None
+    with open(path) as f:
+        for line in f:
+            words = line.split("#", 1)[0].split()
+            if not words:
+                continue
+            st = words[0]
+            n += 1
+            if st == "camera":
+                camera = words
+            elif st == "image":
+                width = int(word(words, "width"))
+                height = int(word(words, "height"))
+            elif st == "material":
+                materials[words[1]] = material(words)
+            elif st == "quad":
+                scene["s%d" % n] = {
+                    "type": "rectangle",
+                    "to_world": parallelogram(floats(words, "corner"), floats(words, "edge1"),
+                                              floats(words, "edge2")),
+                    "bsdf": materials[word(words, "material")]}
+            elif st == "sphere":
+                scene["s%d" % n] = {"type": "sphere", "center": floats(words, "center"),
+                                    "radius": float(word(words, "radius")),
+                                    "bsdf": materials[word(words, "material")]}
+            elif st == "area_light":
+                scene["s%d" % n] = {
+                    "type": "rectangle",
+                    "to_world": parallelogram(floats(words, "corner"), floats(words, "edge1"),
+                                              floats(words, "edge2")),
+                    "bsdf": {"type": "diffuse", "reflectance": rgb([0, 0, 0])},
+                    "emitter": {"type": "area", "radiance": rgb(floats(words, "radiance"))}}
+            elif st == "point_light":
+                scene["s%d" % n] = {"type": "point", "position": floats(words, "position"),
+                                    "intensity": rgb(floats(words, "intensity"))}
+            elif st == "triangle":
+                tri_v.append(floats(words, "v0") + floats(words, "v1") + floats(words, "v2"))
+                m = word(words, "material")
+                if tri_mat not in (None, m):
+                    fail("triangles of more than one material are not translated")
+                tri_mat = m
+            elif st in ("ambient", "background"):
+                continue
+            else:
+                fail("%s: statement %s is not translated" % (path, st))
+    if camera is None:
+        fail("no camera")
+    if tri_v:
+        v = np.array(tri_v, dtype=np.float32).reshape(-1, 3)
+        mesh = mi.Mesh("triangles", len(v), len(v) // 3)
+        params = mi.traverse(mesh)
+        params["vertex_positions"] = dr.ravel(mi.Point3f(v[:, 0], v[:, 1], v[:, 2]))
+        params["faces"] = np.arange(len(v), dtype=np.uint32)
+        params.update()
+        mesh.set_bsdf(mi.load_dict(materials[tri_mat]))
+        scene["mesh"] = mesh
+    scene["camera"] = {
+        "type": "perspective",
+        "fov": float(word(camera, "fov")),
+        "fov_axis": "y",
+        "to_world": mi.ScalarTransform4f().look_at(origin=floats(camera, "origin"),
+                                                   target=floats(camera, "target"),
+                                                   up=floats(camera, "up")),
+        "sampler": {"type": "independent", "sample_count": spp, "seed": seed},
+        "film": {"type": "hdrfilm", "width": width, "height": height,
+                 "rfilter": {"type": "box"}, "pixel_format": "rgb"}}
+    return mi.load_dict(scene)
+
+
+def write_pfm(path, img):
+    h, w, _ = img.shape
+    with open(path, "wb") as f:
+        f.write(b"PF\n%d %d\n-1.0\n" % (w, h))
+        f.write(np.ascontiguousarray(np.flipud(img), dtype="<f4").tobytes())
+
+
+def main():
+    if len(sys.argv) != 7:
+        fail("usage: mitsuba_render.py VARIANT SCENE SPP SEED THREADS OUT.pfm")
+    variant, path, spp, seed, threads, out = sys.argv[1:]
+    mi.set_variant(variant)
+    dr.set_thread_count(int(threads))
+    scene = load(path, int(spp), int(seed))
+    img = mi.render(scene, spp=int(spp), seed=int(seed) + 1000)
+    dr.eval(img)
+    dr.sync_thread()
+    start = time.perf_counter()
+    cpu_start = time.process_time()
+    img = mi.render(scene, spp=int(spp), seed=int(seed))
+    dr.eval(img)
+    dr.sync_thread()
+    seconds = time.perf_counter() - start
+    cpu = time.process_time() - cpu_start
+    write_pfm(out, np.array(img)[:, :, :3])
+    print("seconds %.4f cpu %.4f" % (seconds, cpu))
+
+
+if __name__ == "__main__":
+    main()
