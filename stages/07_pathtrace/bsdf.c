@@ -22,23 +22,18 @@ channel_mean(vec3 c)
     return (c.x + c.y + c.z) / 3;
 }
 
-/* Glass: reflect with probability F, refract otherwise.  Choosing each with
+/* Glass: reflect with probability F (when u < F), refract otherwise.  Choosing each with
  * the probability of its Fresnel weight makes the weight exactly 1 (no
  * absorption), and total internal reflection is F = 1. */
 static bool
-sample_glass(
-    const struct material *m,
-    const struct hit *h,
-    vec3 d,
-    struct rng *rng,
-    struct bsdf_sample *out)
+sample_glass(const struct material *m, const struct hit *h, vec3 d, real u, struct bsdf_sample *out)
 {
     vec3 n = vec3_dot(d, h->n) < 0 ? h->n : h->ng;
     real eta = h->front_face ? 1 / m->ior : m->ior;
     real f = fresnel_dielectric(-vec3_dot(d, n), eta);
     out->weight = vec3_splat(1);
     out->specular = true;
-    if (rng_uniform(rng) < f || !refract(d, n, eta, &out->d)) {
+    if (u < f || !refract(d, n, eta, &out->d)) {
         out->d = reflect(d, n);
         return vec3_dot(out->d, h->ng) > 0;
     }
@@ -51,11 +46,11 @@ sample_bsdf(
     vec3 albedo,
     const struct hit *h,
     vec3 d,
-    struct rng *rng,
+    const real u[3],
     struct bsdf_sample *out)
 {
     if (m->kind == MAT_GLASS) {
-        return sample_glass(m, h, d, rng, out);
+        return sample_glass(m, h, d, u[0], out);
     }
     bool has_mirror = m->kind == MAT_MIRROR || m->kind == MAT_BLEND;
     vec3 mirror = has_mirror ? m->reflectance : vec3_splat(0);
@@ -66,13 +61,13 @@ sample_bsdf(
     }
     /* One lobe, chosen in proportion to its mean reflectance; dividing by
      * that probability keeps the estimate unbiased. */
-    if (rng_uniform(rng) * p_total < p_mirror) {
+    if (u[0] * p_total < p_mirror) {
         out->d = reflect(d, h->n);
         out->weight = vec3_scale(mirror, p_total / p_mirror);
         out->specular = true;
     } else {
         /* f cos / pdf = (albedo / pi) cos / (cos / pi) = albedo. */
-        vec3 local = sample_cosine_hemisphere(rng_uniform(rng), rng_uniform(rng));
+        vec3 local = sample_cosine_hemisphere(u[1], u[2]);
         out->d = onb_to_world(onb_from_normal(h->n), local);
         out->weight = vec3_scale(albedo, p_total / (p_total - p_mirror));
         out->specular = false;

@@ -9,7 +9,6 @@
 #include <stdbool.h>
 
 #include "geometry.h"
-#include "rng.h"
 #include "scene.h"
 #include "vec3.h"
 
@@ -26,15 +25,16 @@ vec3 sample_cosine_hemisphere(real u, real v);
 
 /* Continue a path that arrived along d at h, where the material's diffuse
  * part has the given albedo: pick a lobe (diffuse, mirror, or glass
- * reflection or refraction) in proportion to what it reflects, then a
- * direction.  False when the path ends here (nothing is reflected, or the
- * direction would pass through the surface). */
+ * reflection or refraction) in proportion to what it reflects, by u[0],
+ * then a direction, by u[1] and u[2] (three uniform numbers in [0, 1)).
+ * False when the path ends here (nothing is reflected, or the direction
+ * would pass through the surface). */
 bool sample_bsdf(
     const struct material *m,
     vec3 albedo,
     const struct hit *h,
     vec3 d,
-    struct rng *rng,
+    const real u[3],
     struct bsdf_sample *out);
 
 #endif /* BSDF_H */

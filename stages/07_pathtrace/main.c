@@ -56,6 +56,23 @@ parse_command_line(
             .help = "test every primitive for every ray (the brute-force reference)",
         },
         {
+            .name = "rr-depth",
+            .kind = OPT_INT,
+            .dest = &renderer->rr_depth,
+            .min = 1,
+            .max = 1 << 16,
+            .arg = "N",
+            .help = "Russian roulette from the N-th ray on, camera ray = 1 (default 3)",
+        },
+        {
+            .name = "sampler",
+            .kind = OPT_CHOICE,
+            .dest = &renderer->sampler,
+            .choices = "independent|sobol",
+            .arg = "KIND",
+            .help = "random numbers of the bounces: independent (default), sobol",
+        },
+        {
             .name = "brute-force-max",
             .kind = OPT_INT,
             .dest = brute_max,
@@ -68,9 +85,9 @@ parse_command_line(
             .name = "aa",
             .kind = OPT_CHOICE,
             .dest = &renderer->aa,
-            .choices = "grid|jitter|adaptive",
+            .choices = "grid|jitter|adaptive|sobol",
             .arg = "PATTERN",
-            .help = "where camera samples go in a pixel: grid, jitter (default), adaptive",
+            .help = "where camera samples go in a pixel: grid, jitter (default), adaptive, sobol",
         },
         {
             .name = "aa-threshold",
@@ -200,6 +217,7 @@ main(int argc, char **argv)
         .aa_threshold = (real)0.05,
         .nee = true,
         .rr = true,
+        .rr_depth = RR_MIN_DEPTH,
     };
     bool use_bvh = true;
     int brute_max = BRUTE_FORCE_MAX_PRIMS;

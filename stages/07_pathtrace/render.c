@@ -9,6 +9,7 @@
 #include "render.h"
 
 #include "bsdf.h"
+#include "lowdisc.h"
 
 /* Parity (0 or 1) of the cell of a 1D checkerboard that x falls in;
  * fmod keeps it exact for coordinates too large for an integer. */
@@ -85,6 +86,37 @@ emitted(const struct renderer *renderer, const struct hit *h, const struct path 
     /* END LAB */
 }
 
+/* What a path draws its numbers for at each vertex (the Sobol sampler
+ * gives each its own sequence). */
+enum draw_use {
+    DRAW_LOBE,
+    DRAW_DIRECTION,
+    DRAW_ROULETTE,
+};
+
+/* The sequence of one use at one depth: a seed of its own, derived from
+ * the pixel's key. */
+static uint64_t
+draw_seed(const struct path *path, enum draw_use use)
+{
+    return path->id.key ^ rng_mix64(((uint64_t)path->depth << 8) | (uint64_t)use);
+}
+
+/* Three uniform numbers in [0, 1) for this vertex's bounce: u[0] picks
+ * the lobe, u[1] and u[2] the direction. */
+static void
+bounce_numbers(const struct renderer *renderer, const struct path *path, struct rng *rng, real u[3])
+{
+    if (renderer->sampler == SAMPLER_SOBOL) {
+        u[0] = lowdisc_point1(path->id.index, draw_seed(path, DRAW_LOBE));
+        lowdisc_point2(path->id.index, draw_seed(path, DRAW_DIRECTION), &u[1], &u[2]);
+        return;
+    }
+    for (int i = 0; i < 3; i++) {
+        u[i] = rng_uniform(rng);
+    }
+}
+
 vec3
 shade(
     const struct renderer *renderer,
@@ -113,7 +145,9 @@ shade(
         l = vec3_mul(path->beta, direct_light(renderer, h, albedo, rng, st));
     }
     struct bsdf_sample bs;
-    if (!sample_bsdf(m, albedo, h, r->d, rng, &bs)) {
+    real u[3];
+    bounce_numbers(renderer, path, rng, u);
+    if (!sample_bsdf(m, albedo, h, r->d, u, &bs)) {
         path->beta = vec3_splat(0);
         return l;
     }
@@ -129,14 +163,14 @@ shade(
  * taken from its throughput, and a survivor's throughput is divided by q, so
  * the expected value is unchanged while dim paths stop early. */
 static void
-russian_roulette(struct path *path, struct rng *rng)
+russian_roulette(struct path *path, int min_depth, real u)
 {
     /* LAB 07: Russian roulette */
     if (path->depth < RR_MIN_DEPTH) {
         return;
     }
     real q = fmin(vec3_max_comp(path->beta), (real)RR_MAX_SURVIVAL);
-    if (rng_uniform(rng) >= q) {
+    if (u >= q) {
         path->beta = vec3_splat(0);
     } else {
         path->beta = vec3_scale(path->beta, 1 / q);
@@ -144,10 +178,26 @@ russian_roulette(struct path *path, struct rng *rng)
     /* END LAB */
 }
 
-vec3
-trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct stats *st)
+/* The uniform number Russian roulette draws at this vertex. */
+static real
+roulette_number(const struct renderer *renderer, const struct path *path, struct rng *rng)
 {
-    struct path path = {.beta = vec3_splat(1), .specular = true, .depth = depth};
+    if (renderer->sampler == SAMPLER_SOBOL) {
+        return lowdisc_point1(path->id.index, draw_seed(path, DRAW_ROULETTE));
+    }
+    return rng_uniform(rng);
+}
+
+vec3
+trace(
+    const struct renderer *renderer,
+    ray r,
+    int depth,
+    struct sample_id id,
+    struct rng *rng,
+    struct stats *st)
+{
+    struct path path = {.beta = vec3_splat(1), .specular = true, .depth = depth, .id = id};
     vec3 l = vec3_splat(0);
     while (!vec3_is_zero(path.beta) && path.depth <= renderer->max_depth) {
         struct hit h;
@@ -158,7 +208,7 @@ trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct
         }
         l = vec3_add(l, shade(renderer, &r, &h, &path, rng, st));
         if (renderer->rr) {
-            russian_roulette(&path, rng);
+            russian_roulette(&path, renderer->rr_depth, roulette_number(renderer, &path, rng));
         }
         path.depth++;
     }
@@ -226,7 +276,9 @@ shuffled_index(int i, int n, uint64_t key)
  * Sample i goes to cell shuffled_index(i) of the pattern's grid of spp
  * cells: the passes together fill every cell once, and the cells of any
  * one pass are spread over the whole pixel, so a render stopped after a
- * few passes is not biased towards part of the pixel. */
+ * few passes is not biased towards part of the pixel.  The Sobol pattern
+ * takes point i of a sequence scrambled by the seed and the pixel: each
+ * pass's points are an aligned block of it, stratified on their own. */
 static vec3
 sum_samples(
     const struct renderer *renderer,
@@ -245,11 +297,16 @@ sum_samples(
     for (int i = first; i < first + count; i++) {
         real dx;
         real dy;
-        int cell = shuffled_index(i, renderer->spp, key);
-        sample_position(pattern, cell, renderer->spp, rng, &dx, &dy);
+        if (pattern == AA_SOBOL) {
+            lowdisc_point2((uint32_t)i, key, &dx, &dy);
+        } else {
+            int cell = shuffled_index(i, renderer->spp, key);
+            sample_position(pattern, cell, renderer->spp, rng, &dx, &dy);
+        }
         ray primary = camera_ray(&renderer->camera, (real)px + dx, (real)py + dy);
         st->rays_camera++;
-        vec3 l = trace(renderer, primary, 1, rng, st);
+        struct sample_id id = {key, (uint32_t)i};
+        vec3 l = trace(renderer, primary, 1, id, rng, st);
         *lum_min = fmin(*lum_min, luminance(l));
         *lum_max = fmax(*lum_max, luminance(l));
         sum = vec3_add(sum, l);

@@ -23,7 +23,8 @@
  * (--brute-force-max; main.c says why). */
 #define BRUTE_FORCE_MAX_PRIMS 16
 
-/* Russian roulette starts once a path has this many rays (camera ray = 1). */
+/* Russian roulette starts once a path has this many rays (camera ray = 1),
+ * unless --rr-depth says otherwise. */
 #define RR_MIN_DEPTH 3
 
 /* Russian roulette's survival probability is at most this: a path whose
@@ -38,6 +39,15 @@ enum aa_pattern {
     AA_GRID, /* a regular k x k grid (spp = k^2) */
     AA_JITTER, /* one random sample in each cell of that grid */
     AA_ADAPTIVE, /* a few jittered samples; all spp only where they disagree */
+    AA_SOBOL, /* Owen-scrambled Sobol points (lowdisc.h): stratified at every scale */
+};
+
+/* Where the random numbers of a path come from (ORDER: the --sampler
+ * choices): its lobe, direction and Russian-roulette numbers at every
+ * bounce. */
+enum sampler_kind {
+    SAMPLER_INDEPENDENT, /* the pixel's random stream */
+    SAMPLER_SOBOL, /* Owen-scrambled Sobol points, one sequence per bounce and use */
 };
 
 /* Probe samples of adaptive sampling.  A pixel costs this many samples where
@@ -65,15 +75,27 @@ struct renderer {
     real aa_threshold;
     bool nee; /* next-event estimation: shadow rays to area lights */
     bool rr; /* Russian roulette */
+    int rr_depth; /* ... from this many rays on */
+    int sampler; /* enum sampler_kind */
     real time_limit; /* seconds; 0: none */
 };
 
+/* Which sample of which pixel a path is: the pixel's scramble key (from
+ * the seed and the pixel) and the sample's index among the pixel's spp.
+ * The Sobol sampler draws point `index` of sequences scrambled by key. */
+struct sample_id {
+    uint64_t key;
+    uint32_t index;
+};
+
 /* A path being traced: its throughput beta (the product of the sampling
- * weights so far), whether its last bounce was specular, its length. */
+ * weights so far), whether its last bounce was specular, its length, and
+ * which sample it is. */
 struct path {
     vec3 beta;
     bool specular;
     int depth;
+    struct sample_id id;
 };
 
 /* One vertex of a path, where *r hit h: returns the light it adds to the
@@ -90,7 +112,13 @@ vec3 shade(
 /* Radiance arriving at r.o from direction -r.d, estimated by one random
  * path; r is the depth-th ray of its chain (the camera ray is 1), and none
  * beyond max_depth is traced. */
-vec3 trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct stats *st);
+vec3 trace(
+    const struct renderer *renderer,
+    ray r,
+    int depth,
+    struct sample_id id,
+    struct rng *rng,
+    struct stats *st);
 
 /* The driver's pixel function (driver.h): the mean radiance of the pass's
  * spp_pass camera rays through the pixel's square, placed as the aa pattern

@@ -70,6 +70,60 @@ def material(words):
     fail("material kind %s is not translated" % kind)
 
 
+def triangle_mesh(v, bsdf):
+    """A Mitsuba mesh of the triangles (v[3i], v[3i+1], v[3i+2]), flat-shaded."""
+    v = np.asarray(v, dtype=np.float32)
+    mesh = mi.Mesh("triangles", len(v), len(v) // 3)
+    params = mi.traverse(mesh)
+    params["vertex_positions"] = dr.ravel(mi.Point3f(v[:, 0], v[:, 1], v[:, 2]))
+    params["faces"] = np.arange(len(v), dtype=np.uint32)
+    params.update()
+    mesh.set_bsdf(mi.load_dict(bsdf))
+    return mesh
+
+
+def glb_triangles(words, scene_path):
+    """The corners of the triangles of a `mesh file F ... [scale S]
+    [translate X Y Z]` statement whose .glb holds one mesh at its node's
+    identity transform (the bunny of scenes/models), scaled then moved."""
+    import json
+    import os
+    import struct
+    name = word(words, "file").strip('"')
+    if not os.path.isabs(name):
+        name = os.path.join(os.path.dirname(scene_path), name)
+    data = open(name, "rb").read()
+    jlen = struct.unpack("<I", data[12:16])[0]
+    gltf = json.loads(data[20:20 + jlen])
+    blob = data[20 + jlen + 8:]
+    if len(gltf["nodes"]) != 1 or set(gltf["nodes"][0]) - {"mesh", "name"}:
+        fail("%s: only one untransformed mesh node is translated" % name)
+
+    def accessor(i, dtype, width):
+        a = gltf["accessors"][i]
+        view = gltf["bufferViews"][a["bufferView"]]
+        start = view.get("byteOffset", 0) + a.get("byteOffset", 0)
+        return np.frombuffer(blob, dtype=dtype, count=a["count"] * width,
+                             offset=start).reshape(-1, width)
+
+    tris = []
+    for prim in gltf["meshes"][gltf["nodes"][0]["mesh"]]["primitives"]:
+        pos = accessor(prim["attributes"]["POSITION"], "<f4", 3).astype(np.float64)
+        kind = {5121: "<u1", 5123: "<u2", 5125: "<u4"}[
+            gltf["accessors"][prim["indices"]]["componentType"]]
+        tris.append(pos[accessor(prim["indices"], kind, 1).ravel()])
+    v = np.concatenate(tris)
+    for key, op in (("scale", "s"), ("translate", "t")):
+        if key in words:
+            if op == "s":
+                v = v * float(word(words, "scale"))
+            else:
+                v = v + np.array(floats(words, "translate"))
+    if set(words) & {"rotate", "matrix"}:
+        fail("mesh: only a uniform scale and a translation are translated")
+    return v
+
+
 def load(path, spp, seed):
     scene = {"type": "scene",
              "integrator": {"type": "path", "max_depth": -1, "rr_depth": 5,
@@ -80,6 +134,8 @@ def load(path, spp, seed):
     n = 0
     tri_v = []
     tri_mat = None
+    mesh_v = []
+    mesh_mat = []
     with open(path) as f:
         for line in f:
             words = line.split("#", 1)[0].split()
@@ -120,21 +176,20 @@ def load(path, spp, seed):
                 if tri_mat not in (None, m):
                     fail("triangles of more than one material are not translated")
                 tri_mat = m
+            elif st == "mesh":
+                mesh_v.append(glb_triangles(words, path))
+                scene["mesh%d" % n] = None
+                mesh_mat.append((n, word(words, "material")))
             elif st in ("ambient", "background"):
                 continue
             else:
                 fail("%s: statement %s is not translated" % (path, st))
     if camera is None:
         fail("no camera")
+    for (key, mat), v in zip(mesh_mat, mesh_v):
+        scene["mesh%d" % key] = triangle_mesh(v, materials[mat])
     if tri_v:
-        v = np.array(tri_v, dtype=np.float32).reshape(-1, 3)
-        mesh = mi.Mesh("triangles", len(v), len(v) // 3)
-        params = mi.traverse(mesh)
-        params["vertex_positions"] = dr.ravel(mi.Point3f(v[:, 0], v[:, 1], v[:, 2]))
-        params["faces"] = np.arange(len(v), dtype=np.uint32)
-        params.update()
-        mesh.set_bsdf(mi.load_dict(materials[tri_mat]))
-        scene["mesh"] = mesh
+        scene["triangles"] = triangle_mesh(np.array(tri_v).reshape(-1, 3), materials[tri_mat])
     scene["camera"] = {
         "type": "perspective",
         "fov": float(word(camera, "fov")),

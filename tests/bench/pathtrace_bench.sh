@@ -2,11 +2,13 @@
 # pathtrace_bench.sh - how fast stage 07 converges on the Cornell scenes,
 # beside Mitsuba 3 when it can be had.
 #
-# For each scene: spp x relMSE against Mitsuba's converged reference (a
+# For each scene, stage 07 with its defaults and with the Sobol sampler
+# (--sampler sobol --aa sobol): spp x relMSE against Mitsuba's converged reference (a
 # constant for an unbiased estimator: relMSE falls as 1/spp), seconds per
 # spp at 256x256 on 2 threads, and from the two the time to reach the
 # scene's target relMSE (1e-3; 1e-2 for the caustics of
-# cornell_specular_area).  Mitsuba 3 (`path` integrator, independent
+# cornell_specular_area; bunny_box, which has no reference, is timed only).
+# Mitsuba 3 (`path` integrator, independent
 # sampler; variants llvm_ad_rgb and scalar_rgb) renders the same scenes
 # (tests/bench/mitsuba_render.py translates them), interleaved with ours:
 # each round renders every renderer once, ROUNDS rounds, and each
@@ -34,7 +36,7 @@ imgcmp=$root/build/tools/imgcmp
 python=$root/build/mitsuba-venv/bin/python
 spp=${SPP:-32}
 rounds=${ROUNDS:-2}
-scenes=${SCENES:-cornell_diffuse_area cornell_specular_area cornell_diffuse_point}
+scenes=${SCENES:-cornell_diffuse_area cornell_specular_area cornell_diffuse_point bunny_box}
 work=$(mktemp -d "${TMPDIR:-/tmp}/pathtrace-bench.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 trap 'exit 130' INT TERM
@@ -49,8 +51,33 @@ stat() {
     sed -n "s/.*\"$2\": \([-0-9.e+]*\).*/\1/p" "$1" | head -n 1
 }
 
-# relmse IMAGE SCENE: relMSE of IMAGE against the scene's GI reference.
+# scene_file SCENE: the scene's file.  bunny_box (until the scene library
+# has one) is the Stanford bunny (scenes/models/bunny.glb, 69,451
+# triangles, white, flat-shaded) in the Cornell box of
+# cornell_diffuse_area, written into the work directory.
+scene_file() {
+    if [ "$1" != bunny_box ] || [ -f "$root/scenes/$1.scene" ]; then
+        echo "$root/scenes/$1.scene"
+        return
+    fi
+    if [ ! -f "$work/bunny_box.scene" ]; then
+        {
+            grep -E '^(camera|image|material|quad|area_light) ' \
+                "$root/scenes/cornell_diffuse_area.scene"
+            echo "mesh file \"$root/scenes/models/bunny.glb\" material white" \
+                "scale 6 translate 0.1 -0.198 0"
+        } >"$work/bunny_box.scene"
+    fi
+    echo "$work/bunny_box.scene"
+}
+
+# relmse IMAGE SCENE: relMSE of IMAGE against the scene's GI reference
+# (-1 when there is none).
 relmse() {
+    if [ ! -f "$root/tests/reference/${2}_gi.pfm" ]; then
+        echo -1
+        return
+    fi
     "$imgcmp" --csv "$1" "$root/tests/reference/${2}_gi.pfm" |
         awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "relmse") c = i }
                  NR == 2 { print $c }'
@@ -64,17 +91,20 @@ target() {
     esac
 }
 
-# ours SCENE SPP SEED: "wall_seconds cpu_seconds relmse" of one stage-07 render.
+# ours SCENE SPP SEED [OPTION...]: "wall_seconds cpu_seconds relmse" of one
+# stage-07 render.
 ours() {
-    "$render" -q -t 2 --spp "$2" --seed "$3" -o "$work/ours.pfm" --stats "$work/s.json" \
-        "$root/scenes/$1.scene"
+    scene=$1 spp_=$2 seed=$3
+    shift 3
+    "$render" -q -t 2 --spp "$spp_" --seed "$seed" "$@" -o "$work/ours.pfm" --stats "$work/s.json" \
+        "$(scene_file "$scene")"
     echo "$(stat "$work/s.json" seconds_render) $(stat "$work/s.json" seconds_render_cpu)" \
-        "$(relmse "$work/ours.pfm" "$1")"
+        "$(relmse "$work/ours.pfm" "$scene")"
 }
 
 # mitsuba VARIANT SCENE SPP SEED: the same for Mitsuba (nothing if it fails).
 mitsuba() {
-    out=$("$python" "$root/tests/bench/mitsuba_render.py" "$1" "$root/scenes/$2.scene" \
+    out=$("$python" "$root/tests/bench/mitsuba_render.py" "$1" "$(scene_file "$2")" \
         "$3" "$4" 2 "$work/mi.pfm" 2>"$work/mi.err") || {
         echo "  (mitsuba $1 failed: $(tail -n 1 "$work/mi.err"))" >&2
         return 0
@@ -120,6 +150,8 @@ for scene in $scenes; do
     : >"$work/rows"
     for round in $(seq 1 "$rounds"); do
         echo "stagelight_07 $(ours "$scene" "$spp" "$round")" >>"$work/rows"
+        echo "stagelight_07_sobol $(ours "$scene" "$spp" "$round" --sampler sobol --aa sobol)" \
+            >>"$work/rows"
         for v in $variants; do
             r=$(mitsuba "$v" "$scene" "$spp" "$round")
             [ -z "$r" ] || echo "mitsuba_$v $r" >>"$work/rows"
@@ -134,17 +166,23 @@ for scene in $scenes; do
           if (!($1 in u) || $3 < u[$1]) u[$1] = $3
           if (!seen[$1]++) order[++k] = $1 }
         END {
-            printf "| %-22s | %12s | %10s | %14s | %16s | %13s |\n", "renderer",
-                "spp x relMSE", "s per spp", "cpu s per spp", "time to " t, "time / ours"
+            ref = c["stagelight_07"] >= 0
+            printf "| %-24s | %12s | %10s | %14s | %16s | %13s |\n", "renderer",
+                "spp x relMSE", "s per spp", "cpu s per spp",
+                ref ? "time to " t : "(no reference)", ref ? "time / ours" : "s per spp / ours"
             print "|---|---:|---:|---:|---:|---:|"
             for (i = 1; i <= k; i++) {
                 r = order[i]; cc = c[r] / n[r]; s = w[r] / spp
-                tt[r] = cc / t * s
+                tt[r] = ref ? cc / t * s : s
             }
             for (i = 1; i <= k; i++) {
                 r = order[i]; cc = c[r] / n[r]
-                printf "| %-22s | %12.4f | %10.4f | %14.4f | %14.2f s | %12.2fx |\n", r, cc,
-                    w[r] / spp, u[r] / spp, tt[r], tt[r] / tt["stagelight_07"]
+                if (ref)
+                    printf "| %-24s | %12.4f | %10.4f | %14.4f | %14.2f s | %12.2fx |\n", r, cc,
+                        w[r] / spp, u[r] / spp, tt[r], tt[r] / tt["stagelight_07"]
+                else
+                    printf "| %-24s | %12s | %10.4f | %14.4f | %16s | %12.2fx |\n", r, "-",
+                        w[r] / spp, u[r] / spp, "-", tt[r] / tt["stagelight_07"]
             }
         }' "$work/rows"
     if [ "$scene" = cornell_diffuse_area ]; then

@@ -15,6 +15,10 @@
  *    spp 4, 16, 64, 256 and 8 seeds; the fitted log-log slope must be
  *    below -1.3 (samples stratified only within passes of 16 give about
  *    -1.1).
+ *    Sobol (--aa sobol) must do the same, and reach a lower MSE than
+ *    jitter at 256 spp.
+ *  - Two seeds of --aa sobol give uncorrelated errors (the scramble is
+ *    random per seed) and an unbiased image.
  *  - Grid: with --aa grid --spp k^2 (k = 4, 5, 8, 12) a pixel is exactly
  *    the fraction of its k^2 cell centres ((i + 1/2) / k, (j + 1/2) / k)
  *    the light covers: no sample repeats, none is missing, whatever the
@@ -72,7 +76,10 @@ edge_mse(const struct image *img, const struct pathcheck_edge *e, int *n)
     return sum / *n;
 }
 
-TEST(jitter_error_falls_faster_than_independent_samples)
+/* The log-log slope of the edge pixels' MSE against spp (4 to 256, 8 seeds)
+ * with --aa pattern; the MSE at 256 spp in *mse_256. */
+static double
+edge_error_slope(const char *pattern, double *mse_256)
 {
     static const int spps[] = {4, 16, 64, 256};
 
@@ -88,19 +95,21 @@ TEST(jitter_error_falls_faster_than_independent_samples)
     for (int i = 0; i < N_SPP; i++) {
         char spp[16];
         snprintf(spp, sizeof spp, "%d", spps[i]);
-        const char *const args[] = {"--aa", "jitter", "--spp", spp, NULL};
+        const char *const args[] = {"--aa", pattern, "--spp", spp, NULL};
         struct pathcheck_batches b;
         if (!scene || !pathcheck_render_batches(scene, args, N_SEEDS, seed, &b)) {
             CHECK(false);
-            return;
+            return 0;
         }
         double mse = 0;
         int n = 0;
         for (int k = 0; k < b.k; k++) {
             mse += edge_mse(&b.images[k], &edge, &n) / b.k;
         }
+        *mse_256 = mse;
         printf(
-            "spp %3d: MSE over %d edge pixels and %d seeds %.3g (spp * MSE %.3g)\n",
+            "--aa %s, spp %3d: MSE over %d edge pixels and %d seeds %.3g (spp * MSE %.3g)\n",
+            pattern,
             spps[i],
             n,
             N_SEEDS,
@@ -124,12 +133,92 @@ TEST(jitter_error_falls_faster_than_independent_samples)
         sxy += (lx[i] - mx) * (ly[i] - my);
         sxx += (lx[i] - mx) * (lx[i] - mx);
     }
-    double slope = sxy / sxx;
+    return sxy / sxx;
+}
+
+/* Owen-scrambled Sobol points are stratified at every power-of-two scale at
+ * once: on edge pixels their error falls at least as fast as jitter's
+ * (Owen 1997: about N^-1.5 for a discontinuity along a line, like jitter),
+ * and at 256 spp it is below jitter's. */
+TEST(jitter_and_sobol_errors_fall_faster_than_independent_samples)
+{
+    double mse_jitter;
+    double mse_sobol;
+    double slope_jitter = edge_error_slope("jitter", &mse_jitter);
+    double slope_sobol = edge_error_slope("sobol", &mse_sobol);
     printf(
-        "log-log slope of the edge pixels' MSE: %.3f (independent samples: -1; "
-        "stratified: about -1.5; limit -1.3)\n",
-        slope);
-    CHECK_MSG(slope < -1.3, "slope %.3f: the jittered samples are not stratified", slope);
+        "log-log slope of the edge pixels' MSE: jitter %.3f, sobol %.3f (independent samples: "
+        "-1; stratified: about -1.5; limit -1.3); MSE at 256 spp: jitter %.3g, sobol %.3g\n",
+        slope_jitter,
+        slope_sobol,
+        mse_jitter,
+        mse_sobol);
+    CHECK_MSG(
+        slope_jitter < -1.3,
+        "slope %.3f: the jittered samples are not stratified",
+        slope_jitter);
+    CHECK_MSG(slope_sobol < -1.3, "slope %.3f: the Sobol points are not stratified", slope_sobol);
+    CHECK_MSG(mse_sobol < mse_jitter, "Sobol MSE %.3g, jitter %.3g", mse_sobol, mse_jitter);
+}
+
+/* Two seeds give independent Sobol scrambles: on a 128x128 edge, the
+ * errors of the two renders over the edge pixels are uncorrelated (a
+ * correlation below 4 standard errors, 4 / sqrt(n)), while each is an
+ * unbiased estimate (mean error within 4 standard errors of 0). */
+TEST(sobol_renders_with_two_seeds_are_uncorrelated)
+{
+    static const struct pathcheck_edge big = {128, 60.37, 65.81, 0.7};
+    const char *scene = pathcheck_edge_scene("edge128.scene", &big);
+    const char *const args[] = {"--aa", "sobol", "--spp", "16", NULL};
+    struct image a = {0};
+    struct image b = {0};
+    const char *stats_a = NULL;
+    const char *stats_b = NULL;
+    uint64_t seed = pathcheck_seed(603);
+    if (!scene || !pathcheck_render(scene, args, seed, &a, &stats_a)
+        || !pathcheck_render(scene, args, seed + 1, &b, &stats_b)) {
+        CHECK(false);
+        image_free(&a);
+        return;
+    }
+    double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+    int n = 0;
+    for (int y = 0; y < big.size; y++) {
+        for (int x = 0; x < big.size; x++) {
+            double c = pathcheck_edge_coverage(&big, x, y);
+            if (c > 0 && c < 1) {
+                double ea = image_pixel(&a, x, y)[0] - c;
+                double eb = image_pixel(&b, x, y)[0] - c;
+                sa += ea;
+                sb += eb;
+                saa += ea * ea;
+                sbb += eb * eb;
+                sab += ea * eb;
+                n++;
+            }
+        }
+    }
+    double cov = sab / n - (sa / n) * (sb / n);
+    double va = saa / n - (sa / n) * (sa / n);
+    double vb = sbb / n - (sb / n) * (sb / n);
+    double r = cov / sqrt(va * vb);
+    double se_mean = sqrt(va / n);
+    printf(
+        "--aa sobol --spp 16, seeds %llu and %llu: %d edge pixels, correlation of their errors "
+        "%.3f (limit %.3f); mean error %.2g (standard error %.2g)\n",
+        (unsigned long long)seed,
+        (unsigned long long)(seed + 1),
+        n,
+        r,
+        4 / sqrt(n),
+        sa / n,
+        se_mean);
+    CHECK(n > 100);
+    CHECK_MSG(va > 0 && vb > 0, "a render without noise");
+    CHECK_MSG(fabs(r) < 4 / sqrt(n), "correlation %.3f between two seeds", r);
+    CHECK_MSG(fabs(sa / n) < 4 * se_mean, "mean error %.3g", sa / n);
+    image_free(&a);
+    image_free(&b);
 }
 
 /* One --aa grid render at spp k^2: every pixel is exactly the fraction of
@@ -429,7 +518,8 @@ TEST(adaptive_refines_only_the_edge)
 }
 
 TEST_MAIN(
-    TEST_ENTRY(jitter_error_falls_faster_than_independent_samples),
+    TEST_ENTRY(jitter_and_sobol_errors_fall_faster_than_independent_samples),
+    TEST_ENTRY(sobol_renders_with_two_seeds_are_uncorrelated),
     TEST_ENTRY(grid_samples_the_cell_centres),
     TEST_ENTRY(grid_aliases_where_jitter_does_not),
     TEST_ENTRY(adaptive_refines_only_the_edge))

@@ -3,8 +3,9 @@
  * expected image (TESTING.md T23, Nori's test-direct: one reference for
  * every sampling strategy).
  *
- *  - Russian roulette and next-event estimation are unbiased: --no-rr and
- *    --no-nee converge to the default's image.  Two-sample tests: K renders
+ *  - Russian roulette, next-event estimation and the Sobol sampler are
+ *    unbiased: --no-rr, --no-nee and --sampler sobol --aa sobol converge
+ *    to the default's image.  Two-sample tests: K renders
  *    of each (different seeds), per 16x16 block and channel and for the
  *    whole image, Welch's t-test of the block means (pathcheck_block_welch),
  *    on cornell_diffuse_area (NEE of a small light) and
@@ -16,6 +17,8 @@
  *  - Path length: with --no-rr --max-depth N a camera ray is followed by at
  *    most N - 1 secondary rays, so rays_secondary <= pixels * spp * (N - 1);
  *    Russian roulette ends paths early (fewer secondary rays than without).
+ *  - Small scenes are traced without the BVH (--brute-force-max): forcing
+ *    the tree (--brute-force-max 0) gives the same image, bit for bit.
  *  - nan_pixels is 0 in every run.
  * All t-tests of the program share alpha = 0.01, Sidak-corrected for
  * N_STAT_TESTS.  Images are 128 x 128, 8 renders of 16 spp per set; under
@@ -41,10 +44,10 @@
 #define TEXT(x) TEXT_(x)
 #define BLOCK 16
 
-/* Per comparison: the blocks and the whole image, 3 channels each.  Four
+/* Per comparison: the blocks and the whole image, 3 channels each.  Six
  * two-sample comparisons and two against the direct-light reference. */
 #define N_BLOCKS ((SIZE / BLOCK) * (SIZE / BLOCK))
-#define N_STAT_TESTS (6.0 * 3 * (N_BLOCKS + 1))
+#define N_STAT_TESTS (8.0 * 3 * (N_BLOCKS + 1))
 
 static double
 stat_level(void)
@@ -74,20 +77,22 @@ render_set(
     return true;
 }
 
-/* Compare the default with --no-rr and with --no-nee on one scene. */
+/* Compare the default with --no-rr, with --no-nee and with the Sobol
+ * sampler on one scene. */
 static void
 compare_switches(const char *scene, uint64_t seed)
 {
     static const char *const no_rr[] = {"--no-rr", NULL};
     static const char *const no_nee[] = {"--no-nee", NULL};
+    static const char *const sobol[] = {"--sampler", "sobol", "--aa", "sobol", NULL};
     struct pathcheck_batches base;
     struct pathcheck_batches other;
     if (!render_set(scene, NULL, seed, &base)) {
         CHECK(false);
         return;
     }
-    const char *const *variants[2] = {no_rr, no_nee};
-    for (int v = 0; v < 2; v++) {
+    const char *const *variants[3] = {no_rr, no_nee, sobol};
+    for (int v = 0; v < 3; v++) {
         if (!render_set(scene, variants[v], seed + 100 * (v + 1), &other)) {
             CHECK(false);
             continue;
@@ -146,6 +151,39 @@ compare_switches(const char *scene, uint64_t seed)
         pathcheck_batches_free(&other);
     }
     pathcheck_batches_free(&base);
+}
+
+TEST(tree_and_brute_force_give_the_same_image)
+{
+    const char *scene = test_root_path("scenes/cornell_specular_area.scene");
+    const char *const tree[] =
+        {"-W", "64", "-H", "64", "--spp", "4", "--brute-force-max", "0", NULL};
+    const char *const brute[] = {"-W", "64", "-H", "64", "--spp", "4", NULL};
+    struct image a = {0};
+    struct image b = {0};
+    const char *stats_a = NULL;
+    const char *stats_b = NULL;
+    if (!pathcheck_render(scene, tree, 5, &a, &stats_a)
+        || !pathcheck_render(scene, brute, 5, &b, &stats_b)) {
+        CHECK(false);
+        image_free(&a);
+        return;
+    }
+    size_t n = (size_t)a.width * (size_t)a.height * 3;
+    size_t differ = 0;
+    for (size_t i = 0; i < n; i++) {
+        differ += a.rgb[i] != b.rgb[i];
+    }
+    printf(
+        "cornell_specular_area, 64x64, 4 spp: %zu of %zu values differ between the tree "
+        "(%.0f nodes) and brute force\n",
+        differ,
+        n,
+        stagecheck_stat(stats_a, "bvh_nodes"));
+    CHECK(stagecheck_stat(stats_a, "bvh_nodes") > 0);
+    CHECK_MSG(differ == 0, "%zu values differ", differ);
+    image_free(&a);
+    image_free(&b);
 }
 
 TEST(rr_and_nee_are_unbiased_diffuse)
@@ -271,6 +309,7 @@ TEST(path_length_is_bounded)
 }
 
 TEST_MAIN(
+    TEST_ENTRY(tree_and_brute_force_give_the_same_image),
     TEST_ENTRY(rr_and_nee_are_unbiased_diffuse),
     TEST_ENTRY(rr_and_nee_are_unbiased_specular),
     TEST_ENTRY(max_depth_2_is_direct_light),

@@ -37,6 +37,9 @@
  *  - Power: the same renders against the reference scaled by 1 + POWER_BIAS
  *    must be rejected by the whole-image test, so a small global bias
  *    cannot pass.
+ *  - All of it again with the Sobol sampler (--sampler sobol --aa sobol):
+ *    randomized low-discrepancy points must stay unbiased, and the seeds
+ *    of the batches give independent scrambles.
  *  - nan_pixels is 0 in every run.
  * Under AddressSanitizer the renders are several times slower: there the
  * images are 64 x 64 (the reference downsampled 4x4) and the power check
@@ -66,9 +69,9 @@
 #define NOISE_RATIO 1.8
 
 /* Blocks of one image, plus the whole-image test, times 3 channels, times
- * the 4 scenes. */
+ * the 3 scenes, times 2 samplers, plus the glTF Cornell box. */
 #define N_BLOCKS ((SIZE / BLOCK) * (SIZE / BLOCK))
-#define N_STAT_TESTS (3.0 * 4 * (N_BLOCKS + 1))
+#define N_STAT_TESTS (3.0 * (3 * 2 + 1) * (N_BLOCKS + 1))
 
 struct case_ {
     const char *scene;
@@ -114,8 +117,10 @@ grouped_relmse(const struct pathcheck_batches *b, int g, const struct image *ref
     return sum / groups;
 }
 
+/* The tests of one scene, rendered with the default knobs plus `knobs`
+ * (NULL-terminated, at most 4 words). */
 static void
-check_scene(const struct case_ *c, uint64_t seed)
+check_scene(const struct case_ *c, uint64_t seed, const char *const knobs[])
 {
     struct pathcheck_reference ref;
     if (!pathcheck_reference_load(c->reference, FACTOR, &ref)) {
@@ -124,7 +129,10 @@ check_scene(const struct case_ *c, uint64_t seed)
     }
     char spp[16];
     snprintf(spp, sizeof spp, "%d", SPP);
-    const char *const args[] = {"-W", TEXT(SIZE), "-H", TEXT(SIZE), "--spp", spp, NULL};
+    const char *args[11] = {"-W", TEXT(SIZE), "-H", TEXT(SIZE), "--spp", spp};
+    for (int i = 0; knobs[i] && i < 4; i++) {
+        args[6 + i] = knobs[i];
+    }
     struct pathcheck_batches b;
     if (!pathcheck_render_batches(test_root_path(c->scene), args, BATCHES, seed, &b)) {
         CHECK(false);
@@ -152,7 +160,16 @@ check_scene(const struct case_ *c, uint64_t seed)
     double max_relmse_spp = NOISE_RATIO * floor_relmse * ref_spp;
     double r1 = grouped_relmse(&b, 1, &ref.image);
     double r4 = grouped_relmse(&b, 4, &ref.image);
-    printf("%s: %d batches x %d spp at %dx%d, %.1f s\n", c->scene, b.k, SPP, SIZE, SIZE, b.seconds);
+    printf(
+        "%s%s%s: %d batches x %d spp at %dx%d, %.1f s\n",
+        c->scene,
+        knobs[0] ? " " : "",
+        knobs[0] ? knobs[1] : "",
+        b.k,
+        SPP,
+        SIZE,
+        SIZE,
+        b.seconds);
     printf(
         "  %zu block tests (%dx%d): min p %.3g, %zu rejected at %.3g\n",
         blocks.tests,
@@ -218,33 +235,62 @@ check_scene(const struct case_ *c, uint64_t seed)
     pathcheck_reference_free(&ref);
 }
 
+static const char *const independent[] = {NULL};
+
+/* Owen-scrambled Sobol points for the pixel positions and every bounce's
+ * lobe, direction and roulette numbers: still unbiased. */
+static const char *const sobol[] = {"--sampler", "sobol", "--aa", "sobol", NULL};
+
+static const struct case_ point = {
+    "scenes/cornell_diffuse_point.scene",
+    "cornell_diffuse_point_gi"};
+static const struct case_ area = {"scenes/cornell_diffuse_area.scene", "cornell_diffuse_area_gi"};
+static const struct case_ specular = {
+    "scenes/cornell_specular_area.scene",
+    "cornell_specular_area_gi"};
+
 TEST(diffuse_point_light_matches_mitsuba)
 {
-    const struct case_ c = {"scenes/cornell_diffuse_point.scene", "cornell_diffuse_point_gi"};
-    check_scene(&c, pathcheck_seed(7001));
+    check_scene(&point, pathcheck_seed(7001), independent);
 }
 
 TEST(diffuse_area_light_matches_mitsuba)
 {
-    const struct case_ c = {"scenes/cornell_diffuse_area.scene", "cornell_diffuse_area_gi"};
-    check_scene(&c, pathcheck_seed(7001) + 1000);
+    check_scene(&area, pathcheck_seed(7001) + 1000, independent);
 }
 
 TEST(specular_area_light_matches_mitsuba)
 {
-    const struct case_ c = {"scenes/cornell_specular_area.scene", "cornell_specular_area_gi"};
-    check_scene(&c, pathcheck_seed(7001) + 2000);
+    check_scene(&specular, pathcheck_seed(7001) + 2000, independent);
+}
+
+TEST(sobol_diffuse_point_light_matches_mitsuba)
+{
+    check_scene(&point, pathcheck_seed(7001) + 3000, sobol);
+}
+
+TEST(sobol_diffuse_area_light_matches_mitsuba)
+{
+    check_scene(&area, pathcheck_seed(7001) + 4000, sobol);
+}
+
+TEST(sobol_specular_area_light_matches_mitsuba)
+{
+    check_scene(&specular, pathcheck_seed(7001) + 5000, sobol);
 }
 
 TEST(gltf_box_and_light_match_mitsuba)
 {
     const char *reference = "cornell_diffuse_area_gi";
     const struct case_ c = {"scenes/cornell_gltf_area.scene", reference};
-    check_scene(&c, pathcheck_seed(7001) + 3000);
+    check_scene(&c, pathcheck_seed(7001) + 6000, independent);
 }
 
 TEST_MAIN(
     TEST_ENTRY(diffuse_point_light_matches_mitsuba),
     TEST_ENTRY(diffuse_area_light_matches_mitsuba),
     TEST_ENTRY(specular_area_light_matches_mitsuba),
-    TEST_ENTRY(gltf_box_and_light_match_mitsuba))
+    TEST_ENTRY(gltf_box_and_light_match_mitsuba),
+    TEST_ENTRY(sobol_diffuse_point_light_matches_mitsuba),
+    TEST_ENTRY(sobol_diffuse_area_light_matches_mitsuba),
+    TEST_ENTRY(sobol_specular_area_light_matches_mitsuba))

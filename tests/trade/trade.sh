@@ -157,6 +157,7 @@ if [ "$MODE" = quick ]; then
     PT_SPP="1 4 16"
     PT_SPP_MAIN_EXTRA="64"
     PT_DEPTH="2"
+    PT_RR_DEPTH="2 5"
     MESH_B="1 3 9 28" # 0, 24, 288, 3,024 triangles
     MESH_BRUTE_MAX=1000
 else
@@ -173,6 +174,7 @@ else
     PT_SPP="1 4 16 64"
     PT_SPP_MAIN_EXTRA="256"
     PT_DEPTH="1 2 3 4 8"
+    PT_RR_DEPTH="2 3 4 5 6 8"
     MESH_B="1 2 3 5 9 16 28 50 88 158 280" # 0 (the box alone), 8 ... 312,480 triangles
     MESH_BRUTE_MAX=31000 # brute force grows as pixels x triangles: capped
 fi
@@ -250,7 +252,7 @@ plan_supersample() { # 06: spp x AA pattern (x shadow samples on area lights)
     for sc in $SCENES; do
         sh=" shadow=1"
         area_scene "$sc" || sh=""
-        for aa in grid jitter adaptive; do
+        for aa in grid jitter adaptive $(has "$st" sobol && echo sobol); do
             seeds=$SEEDS
             if [ $aa = grid ] && [ -z "$sh" ]; then seeds=1; fi # nothing random is left
             for n in $([ $aa = adaptive ] && echo "$AA_SPP_ADAPTIVE" || echo "$AA_SPP"); do
@@ -286,6 +288,17 @@ plan_pathtrace() { # 07: spp x NEE on/off x RR on/off; max depth
                 fi
             done
         done
+        if has "$st" --sampler; then
+            for n in $PT_SPP $PT_SPP_MAIN_EXTRA; do
+                emit_seeds "$(pt_seeds "$n")" "$st" "$sc" "spp=$n nee=on rr=on sampler=sobol aa=sobol" \
+                    "nee=on rr=on sampler=sobol aa=sobol" "$n" 0
+            done
+        fi
+        if has "$st" --rr-depth; then
+            for d in $PT_RR_DEPTH; do
+                emit_seeds "$SEEDS" "$st" "$sc" "spp=16 nee=on rr=on rrdepth=$d" "rr start (spp=16)" "$d" 0
+            done
+        fi
         for d in $PT_DEPTH; do
             emit_seeds "$SEEDS" "$st" "$sc" "spp=16 nee=on rr=on depth=$d" "depth (spp=16)" "$d" 0
         done
@@ -358,6 +371,8 @@ knob_args() {
         aa=*) args="$args --aa ${k#*=}" ;;
         bvh=off) args="$args --no-bvh" ;;
         brute=*) args="$args --brute-force-max ${k#*=}" ;;
+        sampler=*) args="$args --sampler ${k#*=}" ;;
+        rrdepth=*) args="$args --rr-depth ${k#*=}" ;;
         nee=off) args="$args --no-nee" ;;
         rr=off) args="$args --no-rr" ;;
         *)

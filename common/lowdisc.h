@@ -1,0 +1,121 @@
+/*
+ * lowdisc.h - randomized low-discrepancy points: Owen-scrambled Sobol.
+ *
+ * The first two dimensions of Sobol's sequence ("On the distribution of
+ * points in a cube", 1967) form a (0,2)-sequence in base 2: its first 2^m
+ * points put exactly one point in every box of area 2^-m of the unit
+ * square with power-of-two sides (2^m strips, 2^m x 1 cells, ..., and
+ * 2^a x 2^b cells, a + b = m), and any 2^m consecutive aligned points do
+ * too.  Independent points only do that on average.
+ *
+ * Owen scrambling ("Randomly permuted (t,m,s)-nets and (t,s)-sequences",
+ * 1995) randomizes the points while keeping that structure: every point is
+ * uniformly distributed in the square, so an estimate from them is
+ * unbiased, and two seeds give independent estimates.  It is computed
+ * here by hashing (Laine and Karras, "Stratified sampling for stochastic
+ * transparency", 2011; Burley, "Practical Hash-based Owen Scrambling",
+ * JCGT 9(4), 2020): with the bits reversed, so that the first digit of the
+ * point is the lowest bit, an invertible mix in which every bit depends
+ * only on itself and the bits below it flips each digit by a random
+ * function of the digits before it - Owen's nested scramble.
+ *
+ * Each use (a pixel position, a bounce direction, ...) takes its own seed,
+ * and the order of the points is shuffled with another scramble of the
+ * index (Burley 2020, section 4), so that the uses of one sample are not
+ * correlated with each other.
+ */
+#ifndef LOWDISC_H
+#define LOWDISC_H
+
+#include <stdint.h>
+
+#include "rng.h"
+#include "vec3.h"
+
+static inline uint32_t
+lowdisc_reverse_bits(uint32_t x)
+{
+    x = (x << 16) | (x >> 16);
+    x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+    x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
+    x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
+    x = ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+    return x;
+}
+
+/* Owen's nested scramble of the binary fraction x / 2^32 by seed.  In the
+ * reversed bits, adding the seed and xoring with multiples of x by even
+ * constants change each bit by a function of the bits below it only, and
+ * every step is invertible (the constants are Burley's, 2020). */
+static inline uint32_t
+lowdisc_owen_scramble(uint32_t x, uint32_t seed)
+{
+    x = lowdisc_reverse_bits(x);
+    x += seed;
+    x ^= x * 0x6c50b47cu;
+    x ^= x * 0xb82f1e52u;
+    x ^= x * 0xc7afe638u;
+    x ^= x * 0x8d22f6e6u;
+    return lowdisc_reverse_bits(x);
+}
+
+/* The first two Sobol dimensions of point `index`, as 32-bit fractions.
+ * Dimension 0 is the van der Corput sequence (the bits of the index
+ * mirrored about the binary point).  Dimension 1 (Sobol's primitive
+ * polynomial x + 1) xors, for each set bit k of the index, the direction
+ * number whose digit d is binomial(k, d) mod 2, which by Lucas' theorem is
+ * 1 when the bits of d are a subset of those of k.  So digit d is the xor
+ * of the index bits k that contain d: five xor-shift steps (one per bit of
+ * a bit position) sum every bit into the positions it contains, and the
+ * result is mirrored like dimension 0. */
+static inline void
+lowdisc_sobol2(uint32_t index, uint32_t *x, uint32_t *y)
+{
+    uint32_t w = index;
+    w ^= (w >> 1) & 0x55555555u;
+    w ^= (w >> 2) & 0x33333333u;
+    w ^= (w >> 4) & 0x0f0f0f0fu;
+    w ^= (w >> 8) & 0x00ff00ffu;
+    w ^= (w >> 16) & 0x0000ffffu;
+    *x = lowdisc_reverse_bits(index);
+    *y = lowdisc_reverse_bits(w);
+}
+
+/* A 32-bit fraction as a real in [0, 1), never rounding up to 1. */
+static inline real
+lowdisc_to_real(uint32_t x)
+{
+#ifdef REAL_IS_FLOAT
+    return (real)(x >> 8) * 0x1p-24f;
+#else
+    return (real)x * 0x1p-32;
+#endif
+}
+
+/* Point `index` of the scrambled 2D sequence chosen by seed (any 64 bits:
+ * a hash of the image seed, the pixel and the use). */
+static inline void
+lowdisc_point2(uint32_t index, uint64_t seed, real *u, real *v)
+{
+    uint64_t h = rng_mix64(seed);
+    uint32_t shuffled = lowdisc_owen_scramble(index, (uint32_t)h);
+    uint32_t x;
+    uint32_t y;
+    lowdisc_sobol2(shuffled, &x, &y);
+    uint64_t h2 = rng_mix64(h);
+    *u = lowdisc_to_real(lowdisc_owen_scramble(x, (uint32_t)(h >> 32)));
+    *v = lowdisc_to_real(lowdisc_owen_scramble(y, (uint32_t)h2));
+}
+
+/* Point `index` of the scrambled 1D sequence chosen by seed: a stratified
+ * sequence (the first 2^m points, one in each interval of length 2^-m). */
+static inline real
+lowdisc_point1(uint32_t index, uint64_t seed)
+{
+    uint64_t h = rng_mix64(seed);
+    uint32_t shuffled = lowdisc_owen_scramble(index, (uint32_t)h);
+    uint32_t x = lowdisc_reverse_bits(shuffled);
+    return lowdisc_to_real(lowdisc_owen_scramble(x, (uint32_t)(h >> 32)));
+}
+
+#endif /* LOWDISC_H */

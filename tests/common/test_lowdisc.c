@@ -1,0 +1,139 @@
+/*
+ * test_lowdisc.c - the Owen-scrambled Sobol points of lowdisc.h: the
+ * first 2^m points of every scramble, and every aligned block of 2^m, are
+ * a (0,m,2)-net (one point in each of the 2^m cells of every shape
+ * 2^a x 2^(m-a)); the 1D points are stratified likewise; one point over
+ * many seeds is uniform (chi-square); the two Sobol dimensions match the
+ * definition by direction numbers; seeds give different points.
+ */
+#include "check.h"
+#include "lowdisc.h"
+
+/* Whether points i0 .. i0 + 2^m - 1 of the scramble `seed` put exactly one
+ * point in every cell of every 2^a x 2^(m-a) grid. */
+static bool
+is_net(uint32_t i0, int m, uint64_t seed)
+{
+    int n = 1 << m;
+    for (int a = 0; a <= m; a++) {
+        int cols = 1 << a;
+        int rows = 1 << (m - a);
+        unsigned char seen[1 << 10] = {0};
+        for (int i = 0; i < n; i++) {
+            real u;
+            real v;
+            lowdisc_point2(i0 + (uint32_t)i, seed, &u, &v);
+            int cell = (int)(v * rows) * cols + (int)(u * cols);
+            if (u < 0 || u >= 1 || v < 0 || v >= 1 || seen[cell]++) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+TEST(first_points_and_aligned_blocks_are_nets)
+{
+    int failures = 0;
+    for (uint64_t seed = 1; seed <= 16; seed++) {
+        for (int m = 1; m <= 10; m++) {
+            failures += !is_net(0, m, seed);
+            failures += !is_net(5u << m, m, seed); /* the sixth block of 2^m */
+        }
+    }
+    CHECK_MSG(failures == 0, "%d of 320 point sets are not (0,m,2)-nets", failures);
+}
+
+TEST(one_dimensional_points_are_stratified)
+{
+    int failures = 0;
+    for (uint64_t seed = 1; seed <= 16; seed++) {
+        for (int m = 0; m <= 10; m++) {
+            unsigned char seen[1 << 10] = {0};
+            for (int i = 0; i < (1 << m); i++) {
+                real u = lowdisc_point1((uint32_t)i, seed);
+                int cell = (int)(u * (1 << m));
+                failures += u < 0 || u >= 1 || seen[cell]++ > 0;
+            }
+        }
+    }
+    CHECK_MSG(failures == 0, "%d points share their stratum", failures);
+}
+
+TEST(a_point_is_uniform_over_seeds)
+{
+    /* Point 5 (and the 1D point 5) of 16384 scrambles in 16 x 16 cells /
+     * 64 intervals: chi-square below its 0.001 quantile (df 255: 330.5;
+     * df 63: 103.4). */
+    enum {
+        SEEDS = 16384
+    };
+
+    int cells[256] = {0};
+    int strata[64] = {0};
+    for (uint64_t seed = 0; seed < SEEDS; seed++) {
+        real u;
+        real v;
+        lowdisc_point2(5, rng_mix64(seed), &u, &v);
+        cells[(int)(v * 16) * 16 + (int)(u * 16)]++;
+        strata[(int)(lowdisc_point1(5, rng_mix64(seed)) * 64)]++;
+    }
+    double chi2_cells = 0;
+    double chi2_strata = 0;
+    for (int c = 0; c < 256; c++) {
+        double e = SEEDS / 256.0;
+        chi2_cells += (cells[c] - e) * (cells[c] - e) / e;
+    }
+    for (int c = 0; c < 64; c++) {
+        double e = SEEDS / 64.0;
+        chi2_strata += (strata[c] - e) * (strata[c] - e) / e;
+    }
+    printf("chi-square: 2D %.1f (df 255), 1D %.1f (df 63)\n", chi2_cells, chi2_strata);
+    CHECK(chi2_cells < 330.5);
+    CHECK(chi2_strata < 103.4);
+}
+
+TEST(sobol_dimensions_match_their_direction_numbers)
+{
+    int wrong = 0;
+    for (uint32_t index = 0; index < 70000; index += 7) {
+        uint32_t x;
+        uint32_t y;
+        lowdisc_sobol2(index, &x, &y);
+        /* Dimension 0: v_k = 2^-(k+1); dimension 1: v_0 = 1/2,
+         * v_k = v_(k-1) xor v_(k-1) / 2. */
+        uint32_t ex = 0;
+        uint32_t ey = 0;
+        uint32_t v = 0x80000000u;
+        for (int k = 0; k < 32; k++, v ^= v >> 1) {
+            if (index >> k & 1u) {
+                ex ^= 0x80000000u >> k;
+                ey ^= v;
+            }
+        }
+        wrong += x != ex || y != ey;
+    }
+    CHECK_MSG(wrong == 0, "%d points differ from the definition", wrong);
+}
+
+TEST(seeds_give_different_points)
+{
+    int same = 0;
+    for (uint32_t i = 0; i < 64; i++) {
+        real u1;
+        real v1;
+        real u2;
+        real v2;
+        lowdisc_point2(i, 1, &u1, &v1);
+        lowdisc_point2(i, 2, &u2, &v2);
+        same += u1 == u2 && v1 == v2;
+    }
+    CHECK(same == 0);
+}
+
+TEST_MAIN(
+    TEST_ENTRY(first_points_and_aligned_blocks_are_nets),
+    TEST_ENTRY(one_dimensional_points_are_stratified),
+    TEST_ENTRY(a_point_is_uniform_over_seeds),
+    TEST_ENTRY(sobol_dimensions_match_their_direction_numbers),
+    TEST_ENTRY(seeds_give_different_points))
