@@ -364,9 +364,8 @@ bvh_free(struct bvh *bvh)
 /* A ray prepared for slab tests. */
 struct slab_ray {
     real o[3];
-    real inv_d[3]; /* 1/d on the axes the ray is not parallel to */
-    bool parallel[3]; /* d = 0 (or so small that 1/d overflows) */
-    bool enters_hi[3]; /* d < 0: the ray enters a slab through hi */
+    real inv_d[3]; /* 1/d, held within +-REAL_MAX (d = 0: +-REAL_MAX, by d's sign) */
+    bool enters_hi[3]; /* inv_d < 0: the ray enters a slab through hi */
 };
 
 static struct slab_ray
@@ -375,10 +374,10 @@ slab_ray_make(ray r)
     struct slab_ray sr;
     for (int i = 0; i < 3; i++) {
         real d = vec3_axis(r.d, i);
+        real inv = 1 / d;
         sr.o[i] = vec3_axis(r.o, i);
-        sr.inv_d[i] = 1 / d;
-        sr.parallel[i] = !(fabs(sr.inv_d[i]) <= REAL_MAX);
-        sr.enters_hi[i] = d < 0;
+        sr.inv_d[i] = fabs(inv) <= REAL_MAX ? inv : copysign(REAL_MAX, d);
+        sr.enters_hi[i] = sr.inv_d[i] < 0;
     }
     return sr;
 }
@@ -386,23 +385,22 @@ slab_ray_make(ray r)
 /*
  * Narrow [*t_near, *t_far] to the t where the ray is inside the slab
  * lo <= x <= hi of axis i: between (lo - o) / d and (hi - o) / d, the
- * plane the ray crosses first chosen by the sign of d.  A ray parallel to
- * the slab is inside it for every t or for none.  Testing that case apart,
- * rather than letting 1/d be infinite as Williams et al. do, keeps
- * 0 * infinity = NaN (an origin exactly on the slab's plane) out of the
- * test: no NaN ever reaches a comparison, and a ray running in a box's face
- * counts as inside the box, which is closed.  (|d| < 1/REAL_MAX counts as
- * parallel: over any distance at which a float box can lie, such a ray
- * moves less than 1e-200.)
+ * plane the ray crosses first chosen by the sign of d.  Williams et al.
+ * let 1/d be infinite for a ray parallel to the slab; then an origin
+ * exactly on the slab's plane gives 0 * infinity = NaN.  Here 1/d is held
+ * to +-REAL_MAX instead, which keeps every product a number (the bounds
+ * are finite or infinite, never NaN, and 1/d is never 0) and gives a
+ * parallel ray the right answer without a branch: inside the slab, the
+ * two distances have opposite signs (or one is 0, on a face: the box is
+ * closed) and the interval keeps t = 0 .. t_far; outside, both have the
+ * same sign and the interval is empty, or starts so far away (over 1e8
+ * scene units even for a gap of one float) that at worst a box is entered
+ * that holds nothing the ray can reach - a wasted test, never a missed
+ * hit.
  */
 static inline void
 clip_slab(real lo, real hi, const struct slab_ray *sr, int i, real *t_near, real *t_far)
 {
-    if (sr->parallel[i]) {
-        bool inside = lo <= sr->o[i] && sr->o[i] <= hi;
-        *t_far = inside ? *t_far : -1;
-        return;
-    }
     real t_enter = ((sr->enters_hi[i] ? hi : lo) - sr->o[i]) * sr->inv_d[i];
     real t_leave = ((sr->enters_hi[i] ? lo : hi) - sr->o[i]) * sr->inv_d[i];
     *t_near = t_enter > *t_near ? t_enter : *t_near;

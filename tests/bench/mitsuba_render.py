@@ -75,8 +75,10 @@ def triangle_mesh(v, bsdf):
     v = np.asarray(v, dtype=np.float32)
     mesh = mi.Mesh("triangles", len(v), len(v) // 3)
     params = mi.traverse(mesh)
-    params["vertex_positions"] = dr.ravel(mi.Point3f(v[:, 0], v[:, 1], v[:, 2]))
-    params["faces"] = np.arange(len(v), dtype=np.uint32)
+    # The buffers' own types, built from flat arrays: the same code serves
+    # the scalar and the LLVM variants.
+    params["vertex_positions"] = type(params["vertex_positions"])(v.ravel())
+    params["faces"] = type(params["faces"])(np.arange(len(v), dtype=np.uint32))
     params.update()
     mesh.set_bsdf(mi.load_dict(bsdf))
     return mesh
