@@ -14,7 +14,10 @@
 # each round renders every renderer once, ROUNDS rounds, and each
 # renderer's fastest round counts (the machine is shared: the fastest round
 # is the one least disturbed).  Times are wall-clock; the processor time
-# of all threads is printed beside them (steadier on a loaded machine).
+# of all threads is printed beside them, with the time to the target and
+# the ratio computed from it too (steadier on a loaded machine; on a quiet
+# one, wall-clock x 2 threads is about the processor time).  Without a
+# reference (bunny_box) the ratios are those of the seconds per spp.
 # Last, cornell_diffuse_area is rendered by stage 07 at the spp predicted
 # for relMSE 1e-3, to check the prediction.
 #
@@ -167,22 +170,21 @@ for scene in $scenes; do
           if (!seen[$1]++) order[++k] = $1 }
         END {
             ref = c["stagelight_07"] >= 0
-            printf "| %-24s | %12s | %10s | %14s | %16s | %13s |\n", "renderer",
-                "spp x relMSE", "s per spp", "cpu s per spp",
-                ref ? "time to " t : "(no reference)", ref ? "time / ours" : "s per spp / ours"
-            print "|---|---:|---:|---:|---:|---:|"
+            printf "| %-24s | %12s | %9s | %13s | %14s | %11s | %18s | %10s |\n", "renderer",
+                "spp x relMSE", "s per spp", "CPU s per spp",
+                ref ? "time to " t : "(no reference)", "time / ours",
+                ref ? "CPU s to " t : "(no reference)", "CPU / ours"
+            print "|---|---:|---:|---:|---:|---:|---:|---:|"
             for (i = 1; i <= k; i++) {
-                r = order[i]; cc = c[r] / n[r]; s = w[r] / spp
-                tt[r] = ref ? cc / t * s : s
+                r = order[i]; cc = ref ? c[r] / n[r] / t : 1
+                tw[r] = cc * w[r] / spp; tc[r] = cc * u[r] / spp
             }
             for (i = 1; i <= k; i++) {
-                r = order[i]; cc = c[r] / n[r]
-                if (ref)
-                    printf "| %-24s | %12.4f | %10.4f | %14.4f | %14.2f s | %12.2fx |\n", r, cc,
-                        w[r] / spp, u[r] / spp, tt[r], tt[r] / tt["stagelight_07"]
-                else
-                    printf "| %-24s | %12s | %10.4f | %14.4f | %16s | %12.2fx |\n", r, "-",
-                        w[r] / spp, u[r] / spp, "-", tt[r] / tt["stagelight_07"]
+                r = order[i]
+                printf "| %-24s | %12s | %9.4f | %13.4f | %14s | %10.2fx | %18s | %9.2fx |\n", r,
+                    ref ? sprintf("%.4f", c[r] / n[r]) : "-", w[r] / spp, u[r] / spp,
+                    ref ? sprintf("%.2f s", tw[r]) : "-", tw[r] / tw["stagelight_07"],
+                    ref ? sprintf("%.2f s", tc[r]) : "-", tc[r] / tc["stagelight_07"]
             }
         }' "$work/rows"
     if [ "$scene" = cornell_diffuse_area ]; then
