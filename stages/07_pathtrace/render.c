@@ -166,7 +166,7 @@ static void
 russian_roulette(struct path *path, int min_depth, real u)
 {
     /* LAB 07: Russian roulette */
-    if (path->depth < RR_MIN_DEPTH) {
+    if (path->depth < min_depth) {
         return;
     }
     real q = fmin(vec3_max_comp(path->beta), (real)RR_MAX_SURVIVAL);
