@@ -273,7 +273,7 @@ scene_load_with(
     const char *camera = opt ? opt->camera : NULL;
     uint64_t max_bytes = opt && opt->max_bytes ? opt->max_bytes : SCENE_DEFAULT_MAX_BYTES;
     if (scene_path_is_gltf(path)) {
-        return scene_load_gltf(path, camera, out, err);
+        return scene_load_gltf(path, camera, max_bytes, out, err);
     }
     *out = (struct scene){.width = 0};
     if (camera) {

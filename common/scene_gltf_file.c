@@ -184,11 +184,24 @@ add_headlight(struct parser *p, const struct token *at, const char *file)
 }
 
 bool
-scene_load_gltf(const char *path, const char *camera, struct scene *out, struct diag *err)
+scene_load_gltf(
+    const char *path,
+    const char *camera,
+    uint64_t max_bytes,
+    struct scene *out,
+    struct diag *err)
 {
     *out = (struct scene){.width = 0};
     snprintf(out->path, sizeof out->path, "%s", path);
-    struct parser p = {.src = "", .line = 1, .col = 1, .name = path, .scene = out, .err = err};
+    struct parser p = {
+        .src = "",
+        .line = 1,
+        .col = 1,
+        .name = path,
+        .scene = out,
+        .err = err,
+        .max_bytes = max_bytes,
+    };
     /* Diagnostics about the file as a whole: no line, no column. */
     const struct token at = {.kind = TOK_EOF, .text = "", .line = 0, .col = 0};
     const char *slash = strrchr(path, '/');

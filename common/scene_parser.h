@@ -200,6 +200,11 @@ bool append_file_mesh(
 
 /* A glTF file as the whole scene (scene_gltf_file.c). */
 bool scene_path_is_gltf(const char *path);
-bool scene_load_gltf(const char *path, const char *camera, struct scene *out, struct diag *err);
+bool scene_load_gltf(
+    const char *path,
+    const char *camera,
+    uint64_t max_bytes,
+    struct scene *out,
+    struct diag *err);
 
 #endif /* SCENE_PARSER_H */
