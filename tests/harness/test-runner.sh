@@ -45,6 +45,8 @@ C=$T/tree
 # ---- the copy ------------------------------------------------------------
 mkdir -p "$C/stages" "$C/tests/common" "$C/tests/stage" "$C/stages/02_fake"
 cp "$root/Makefile" "$C/"
+mkdir -p "$C/scenes/models"
+cp "$root/scenes/models/models.mk" "$C/scenes/models/"
 cp -R "$root/common" "$C/common"
 cp -R "$root/stages/01_raycast" "$C/stages/"
 cp "$root/tests/Makefile" "$C/tests/"
