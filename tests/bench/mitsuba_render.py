@@ -5,7 +5,7 @@
 
 Translates the statements the reference scenes use (camera, image,
 material diffuse/mirror/glass, quad, sphere, area_light, point_light,
-triangle) into a Mitsuba scene as ../shared/reference/SCENES.md defines it
+triangle) into a Mitsuba scene as tests/reference/SCENES.md defines it
 (Mitsuba's `path` integrator, unbounded depth, Russian roulette from depth
 5, the independent sampler, a box filter of one pixel, two-sided surfaces,
 one-sided black area lights), renders it once unmeasured (the LLVM variant
