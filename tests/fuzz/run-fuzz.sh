@@ -8,6 +8,12 @@
 # A crash, leak, hang, out-of-memory or UBSan report fails it: the input is minimised into
 # OUT/artifacts/NAME/minimized-* and the way to replay it is printed.
 # Writes one summary line to OUT/logs/NAME.summary.
+#
+# With FUZZ_CPU_SECONDS set, the harness runs until it has used that much
+# CPU time instead (SECONDS is then only a wall-clock ceiling): on a shared
+# machine a niced long run gets a fraction of a core, and the CPU time is
+# what says how much fuzzing was done.  A watchdog reads the harness's
+# /proc/PID/stat every few seconds and interrupts it at the budget.
 set -u
 name=$1 bin=$2 seconds=$3 out=$4
 shift 4
@@ -26,19 +32,48 @@ else
     rm -rf "$scratch"
     mkdir -p "$scratch"
 fi
-trap 'rm -rf "$scratch" "$scratch.time"' EXIT
+trap 'rm -rf "$scratch" "$scratch.time" "$scratch.budget"' EXIT
 seeds=()
 for d in "$@"; do
     [ -d "$d" ] && seeds+=("$d")
 done
 dict=()
 [ -n "${FUZZ_DICT:-}" ] && dict=(-dict="$FUZZ_DICT")
-TIMEFORMAT='%U %S'
-{ time TMPDIR=$scratch "$bin" -max_total_time="$seconds" -rss_limit_mb="${FUZZ_RSS_MB:-2048}" \
-    -malloc_limit_mb="${FUZZ_RSS_MB:-2048}" -timeout="${FUZZ_TIMEOUT:-10}" \
-    -artifact_prefix="$artifacts/" "${dict[@]}" -print_final_stats=1 "$corpus" "${seeds[@]}" \
-    >"$log" 2>&1; } 2>"$scratch.time"
+# cpu_watchdog PID BUDGET MARK - interrupt PID once its user+system CPU time
+# reaches BUDGET seconds, and leave MARK behind to say it was us.
+cpu_watchdog() {
+    local pid=$1 budget=$2 mark=$3 tck fields
+    tck=$(getconf CLK_TCK)
+    while kill -0 "$pid" 2>/dev/null; do
+        # Fields 14 and 15 of /proc/PID/stat (after the parenthesised name).
+        fields=$(sed 's/^.*) //' "/proc/$pid/stat" 2>/dev/null) || return 0
+        set -- $fields
+        if [ $(((${12} + ${13}) / tck)) -ge "$budget" ]; then
+            : >"$mark"
+            kill -INT "$pid"
+            return 0
+        fi
+        sleep 5
+    done
+}
+mark=$scratch.budget
+TIMEFORMAT='%U %S %R'
+start_wall=$(date +%s)
+{ time {
+    TMPDIR=$scratch "$bin" -max_total_time="$seconds" -rss_limit_mb="${FUZZ_RSS_MB:-2048}" \
+        -malloc_limit_mb="${FUZZ_RSS_MB:-2048}" -timeout="${FUZZ_TIMEOUT:-10}" \
+        -artifact_prefix="$artifacts/" "${dict[@]}" -print_final_stats=1 "$corpus" "${seeds[@]}" \
+        >"$log" 2>&1 &
+    pid=$!
+    [ -n "${FUZZ_CPU_SECONDS:-}" ] && cpu_watchdog "$pid" "$FUZZ_CPU_SECONDS" "$mark" &
+    wait "$pid"
+}; } 2>"$scratch.time"
 status=$?
+# libFuzzer exits 72 when interrupted; the watchdog's interruption is the
+# planned end of a CPU-budgeted run.
+[ "$status" -eq 72 ] && [ -f "$mark" ] && status=0
+rm -f "$mark"
+seconds=$(($(date +%s) - start_wall))
 cpu=$(awk '{printf "%.1f", $1 + $2}' "$scratch.time")
 runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
 rss=$(sed -n 's/^stat::peak_rss_mb: *//p' "$log" | tail -n 1)
