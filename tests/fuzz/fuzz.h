@@ -31,7 +31,7 @@ const char *fuzz_dir(void);
 
 /* Write data to fuzz_dir()/name, replacing an older file; returns the full
  * path (a static buffer per name slot: at most FUZZ_MAX_FILES names). */
-#define FUZZ_MAX_FILES 4
+#define FUZZ_MAX_FILES 8
 const char *fuzz_write(const char *name, const uint8_t *data, size_t size);
 
 /* Remove fuzz_dir()/name if it exists (a file an earlier input wrote). */
