@@ -9,20 +9,33 @@
 # lab's own stage first (NN_*.c, NN-MM_*.c: the score), then the earlier
 # stages (their features come with the handout: a failure there is a
 # regression).  A program that does not compile, crashes or times out
-# scores 0 of the TEST()s in its source.  The last line is for scripts:
-#   GRADE lab=05_bvh score=42.9 lab_passed=3 lab_total=7 earlier_passed=40 earlier_total=40 build=ok
-# score = 100 * lab_passed / lab_total (skipped tests do not count).
+# fails every TEST() in its source.
+#
+# Controls: a test of the lab that passes in the untouched handout (a
+# fresh one from the project, as make-lab.sh writes it) measures nothing of
+# the student's work; it is listed as a control, not scored.  grade.sh
+# finds them by building and running the untouched handout's lab tests
+# first (--controls FILE gives them instead).
+#
+# The last line is for scripts:
+#   GRADE lab=05_bvh score=42.9 lab_passed=3 lab_total=7 controls=2 earlier_passed=40 earlier_total=40 build=ok
+# score = 100 * lab_passed / lab_total, where lab_total leaves out the
+# controls and the skipped tests (the report and score: grade.awk).
 #
 # Options:
 #   --pristine     grade with the project's own copy of the tests, not the
 #                  handout's: a fresh handout of the same stage gets the
 #                  student's stages/NN_name/ (what make grade does); files
 #                  the student changed outside stages/ are listed
+#   --controls FILE  the controls are the TEST()s FILE lists, one
+#                  "PROGRAM TEST" a line (no untouched handout is run)
 #   --pages DIR    where the report pages go (default LAB/grade): one
 #                  compare page per reference render (grade-pages.sh)
+#   --no-pages     write no report pages
 #   --timeout SEC  time limit of one test program (default 300; 0: none)
 #   --jobs N       parallel make jobs (default: the number of processors)
-#   --root DIR     the project, for --pristine (default: this script's)
+#   --root DIR     the project, for --pristine and the controls (default:
+#                  this script's)
 #   --help
 # Exit status: 0 graded (whatever the score), 1 could not grade, 2 usage.
 set -eu
@@ -34,16 +47,20 @@ LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$LAB_DIR/../.." && pwd)
 pristine=0
 pages=
+no_pages=0
+controls=
 limit=300
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
 while [ $# -gt 0 ]; do
     case $1 in
         -h | --help) show_help "$0"; exit 0 ;;
         --pristine) pristine=1 ;;
-        --timeout | --jobs | --root | --pages)
+        --no-pages) no_pages=1 ;;
+        --timeout | --jobs | --root | --pages | --controls)
             [ $# -ge 2 ] || usage_error "$1 needs a value"
             case $1 in
                 --pages) pages=$2 ;;
+                --controls) controls=$2 ;;
                 --timeout) limit=$2 ;;
                 --jobs) jobs=$2 ;;
                 --root) root=$(abs_dir "$2") ;;
@@ -60,6 +77,7 @@ done
 case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
 case $jobs in '' | *[!0-9]*) usage_error "--jobs needs a number, got '$jobs'" ;; esac
 [ -d "$1" ] || die "no such directory: $1"
+[ -z "$controls" ] || [ -f "$controls" ] || die "no such file: $controls"
 lab=$(abs_dir "$1")
 is_handout "$lab" || die "$1 is not a lab handout (its Makefile was not written by make-lab.sh)"
 stage=$(handout_stage "$lab") || die "$1: expected exactly one stage in stages/"
@@ -71,8 +89,22 @@ trap 'exit 1' HUP INT TERM
 
 echo "grade: lab $nn ($stage) in $1"
 
-# --pristine: the student's stage in a fresh handout.
+# find_controls DIR - build DIR, an untouched handout, and write the lab's
+# controls, "PROGRAM TEST" a line, into $work/controls.
+find_controls() {
+    echo "controls: running the lab's tests in an untouched handout"
+    handout_build "$1" "$work/untouched-build.log" lab -j"$jobs" ||
+        die "the untouched handout of $stage does not build: $(build_errors "$work/untouched-build.log" | head -n 3)"
+    handout_controls "$1" "$work/untouched" "$limit" | awk '$3 == "ok" { print $1, $2 }' >"$work/controls"
+}
+
+# --pristine: the student's stage in a fresh handout, which first runs
+# untouched for the controls.
 dir=$lab
+controls_known=known
+if [ -n "$controls" ]; then
+    cp "$controls" "$work/controls"
+fi
 if [ "$pristine" -eq 1 ]; then
     [ -d "$root/stages/$stage" ] || die "the project in $root has no stage $stage"
     "$LAB_DIR/make-lab.sh" --quiet --root "$root" "$stage" "$work/lab" ||
@@ -85,12 +117,23 @@ if [ "$pristine" -eq 1 ]; then
         echo "note: these files differ from the project's copy and are not used:"
         echo "$changed" | sed 's/^/    /'
     fi
-    rm -rf "$work/lab/stages/$stage"
+    [ -n "$controls" ] || find_controls "$work/lab"
+    rm -rf "$work/lab/stages/$stage" "$work/lab/build/$stage"
     mkdir -p "$work/lab/stages/$stage"
     cp -R "$lab/stages/$stage/." "$work/lab/stages/$stage/"
     rm -rf "$work/lab/stages/$stage/build"
     dir=$work/lab
+elif [ -z "$controls" ]; then
+    if [ -d "$root/stages/$stage" ] &&
+        "$LAB_DIR/make-lab.sh" --quiet --root "$root" "$stage" "$work/untouched-lab" 2>/dev/null; then
+        find_controls "$work/untouched-lab"
+        rm -rf "$work/untouched-lab"
+    else
+        controls_known=unknown
+        echo "note: no untouched handout of $stage from the project in $root: no controls, every test is scored"
+    fi
 fi
+[ -f "$work/controls" ] || : >"$work/controls"
 
 # No program of an earlier build may stand in for one that does not build now.
 rm -rf "$dir/build/tests/$stage" "$dir/build/$stage/render"
@@ -106,53 +149,21 @@ if ! handout_build "$dir" "$work/build.log" all -j"$jobs"; then
     build_errors "$work/build.log" | head -n 20 | sed 's/^/    /'
 fi
 
-# One line per program: FROM NAME PASSED TOTAL NOTE FAILED-TESTS
-: >"$work/results"
+# The records of grade.awk: the controls, then each program and its TEST()s.
+awk '{ printf "C\t%s\t%s\n", $1, $2 }' "$work/controls" >"$work/records"
 for src in $(handout_tests "$dir"); do
     name=$(basename "$src" .c)
-    res=$(run_handout_test "$dir" "$src" "$work/$name.log" "$limit")
-    set -- $res
-    note=$5
-    [ "$note" = - ] && note=
-    names=$(sed -n 's/^FAIL //p' "$work/$name.log" | head -n 5 | awk '{ printf "%s%s", (NR > 1 ? ", " : ""), $0 }')
-    printf '%s\t%s\t%s\t%s\t%s\t%s\n' "$(test_from "$src")" "$name" "$1" "$(($1 + $2))" "$note" "$names" \
-        >>"$work/results"
+    from=$(test_from "$src")
+    set -- $(run_handout_test "$dir" "$src" "$work/$name.log" "$limit")
+    printf 'P\t%s\t%s\t%s\n' "$from" "$name" "$5" >>"$work/records"
+    test_statuses "$src" "$work/$name.log" "$5" |
+        awk -v from="$from" -v name="$name" '{ printf "T\t%s\t%s\t%s\t%s\n", from, name, $1, $2 }' >>"$work/records"
 done
 
-if [ "$build" != failed ]; then
+if [ "$build" != failed ] && [ "$no_pages" -eq 0 ]; then
     echo "report pages (how to read them: LAB.md, \"Reading the report pages\"):"
     "$LAB_DIR/grade-pages.sh" "$dir" "$stage" "${pages:-$lab/grade}" || echo "note: some pages could not be written"
 fi
 
-awk -F '\t' -v nn="$nn" -v stage="$stage" -v build="$build" '
-function line(name, p, t, note, names,    s) {
-    s = sprintf("    %-32s %4d/%-4d %s%s", name, p, t, (note != "" ? note " " : ""), (names != "" ? "failed: " names : ""))
-    sub(/ +$/, "", s)
-    print s
-}
-{
-    n++
-    from[n] = $1; name[n] = $2; p[n] = $3; t[n] = $4; note[n] = $5; names[n] = $6
-    if ($1 == nn) { lp += $3; lt += $4 } else { ep += $3; et += $4; gp[$1] += $3; gt[$1] += $4; groups[$1] = 1 }
-}
-END {
-    printf "\nthis lab (tests of stage %s):\n", nn
-    for (i = 1; i <= n; i++) if (from[i] == nn) line(name[i], p[i], t[i], note[i], names[i])
-    printf "    %-32s %4d/%d\n", "total", lp, lt
-    ng = 0
-    for (g in groups) order[++ng] = g
-    for (i = 2; i <= ng; i++) for (j = i; j > 1 && order[j - 1] > order[j]; j--) {
-        x = order[j]; order[j] = order[j - 1]; order[j - 1] = x
-    }
-    for (k = 1; k <= ng; k++) {
-        g = order[k]
-        printf "\nearlier: tests from stage %s (features the handout came with):\n", g
-        for (i = 1; i <= n; i++) if (from[i] == g) line(name[i], p[i], t[i], note[i], names[i])
-        printf "    %-32s %4d/%d\n", "total", gp[g], gt[g]
-    }
-    score = lt > 0 ? 100 * lp / lt : 0
-    printf "\nscore: %.1f%% (%d of %d tests of lab %s); earlier stages: %d of %d", score, lp, lt, nn, ep, et
-    if (ep < et) printf " (%d regression(s))", et - ep
-    printf "\n"
-    printf "GRADE lab=%s score=%.1f lab_passed=%d lab_total=%d earlier_passed=%d earlier_total=%d build=%s\n", stage, score, lp, lt, ep, et, build
-}' "$work/results"
+awk -v nn="$nn" -v stage="$stage" -v build="$build" -v controls="$controls_known" \
+    -f "$LAB_DIR/grade.awk" "$work/records"

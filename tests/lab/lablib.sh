@@ -195,3 +195,41 @@ run_handout_test() {
 test_names() {
     sed -n 's/^TEST(\([A-Za-z_][A-Za-z0-9_]*\)).*/\1/p' "$1"
 }
+
+# test_statuses SRC LOG NOTE - "TEST STATUS" (ok, FAIL or skip) for every
+# TEST() of SRC, from the "ok NAME", "FAIL NAME" and "skip NAME" lines of
+# the program's LOG; NOTE is run_handout_test's note.  A program that did
+# not compile, crashed or timed out fails every TEST(), as does a TEST()
+# the log does not mention; a program whose tests passed but that exited
+# non-zero (note exit-N) has one more failed line, "(exit-N) FAIL", as
+# run_handout_test counts it.
+test_statuses() {
+    ts_log=$2
+    case $3 in
+        did-not-compile | crashed | timed-out) ts_log=/dev/null ;;
+    esac
+    test_names "$1" | awk -v note="$3" -v logf="$ts_log" '
+        BEGIN {
+            while ((getline l < logf) > 0)
+                if (split(l, w, " ") == 2 && (w[1] == "ok" || w[1] == "FAIL" || w[1] == "skip")) st[w[2]] = w[1]
+        }
+        { print $1, ($1 in st ? st[$1] : "FAIL") }
+        END { if (note ~ /^exit-/) print "(" note ")", "FAIL" }'
+}
+
+# handout_controls DIR LOGDIR TIMEOUT - run the lab's own test programs of
+# DIR, an untouched handout (built), and print "PROGRAM TEST STATUS" for
+# each of their TEST()s.  Those with status ok are the lab's controls: they
+# pass without the student's work, so grade.sh shows them and does not
+# score them.  The programs' logs go to LOGDIR.
+handout_controls() {
+    hc_stage=$(handout_stage "$1") || die "$1: no stage in stages/"
+    mkdir -p "$2"
+    for hc_src in $(handout_tests "$1"); do
+        [ "$(test_from "$hc_src")" = "${hc_stage%%_*}" ] || continue
+        hc_name=$(basename "$hc_src" .c)
+        set -- "$1" "$2" "$3" $(run_handout_test "$1" "$hc_src" "$2/$hc_name.log" "$3")
+        test_statuses "$hc_src" "$2/$hc_name.log" "$8" | sed "s/^/$hc_name /"
+        set -- "$1" "$2" "$3"
+    done
+}

@@ -608,6 +608,57 @@ test_help() {
     done
 }
 
+# --- grading: test_statuses (lablib.sh) and grade.awk ----------------------
+# A TEST() that passes in the untouched handout is a control: listed, not
+# scored (a handout with only stubs must score 0%, the solution 100%).
+test_grade_score() {
+    printf 'TEST(a) {}\nTEST(b) {}\nTEST(c) {}\nTEST(d) {}\n' >"$T/05_x.c"
+    printf 'ok   a\nsome check: FAIL this line is not a result\nFAIL b\nskip c\n3 passed, 1 failed, 1 skipped\n' >"$T/05_x.log"
+    test_statuses "$T/05_x.c" "$T/05_x.log" - >"$T/st" 2>&1
+    printf 'a ok\nb FAIL\nc skip\nd FAIL\n' >"$T/st.expected"
+    same grade/statuses "$T/st.expected" "$T/st"
+    test_statuses "$T/05_x.c" "$T/05_x.log" crashed >"$T/st" 2>&1
+    printf 'a FAIL\nb FAIL\nc FAIL\nd FAIL\n' >"$T/st.expected"
+    same grade/statuses-crashed "$T/st.expected" "$T/st"
+    test_statuses "$T/05_x.c" "$T/05_x.log" exit-1 | tail -n 1 >"$T/st" 2>&1
+    printf '(exit-1) FAIL\n' >"$T/st.expected"
+    same grade/statuses-exit "$T/st.expected" "$T/st"
+
+    # Lab 05: 05_x has the controls a and b; 05-06_y none; 01_z is earlier.
+    # gr RECORDS... - grade.awk's GRADE line and control line for records.
+    gr() {
+        printf '%s\n' "$@" | tr '|' '\t' >"$T/records"
+        awk -v nn=05 -v stage=05_x -v build=ok -v controls=known -f "$LAB_DIR/grade.awk" "$T/records" >"$T/report"
+        { grep '^GRADE ' "$T/report"; grep '^    controls' "$T/report" | sed 's/^ *//'; } | tr '\n' '|'
+    }
+    # Untouched: the controls pass, everything else fails: 0%.
+    got=$(gr 'C|05_x|a' 'C|05_x|b' 'P|05|05_x|-' 'T|05|05_x|a|ok' 'T|05|05_x|b|ok' 'T|05|05_x|c|FAIL' \
+        'P|05|05-06_y|-' 'T|05|05-06_y|e|FAIL' 'P|01|01_z|-' 'T|01|01_z|a|ok' 'T|01|01_z|b|ok')
+    want='GRADE lab=05_x score=0.0 lab_passed=0 lab_total=2 controls=2 earlier_passed=2 earlier_total=2 build=ok|controls (pass without your work, not scored): 05_x/a, 05_x/b|'
+    if [ "$got" = "$want" ]; then ok grade/untouched-scores-0; else fail grade/untouched-scores-0 "got:  $got" "want: $want"; fi
+    # The solution: everything passes: 100%, the controls still not scored.
+    got=$(gr 'C|05_x|a' 'C|05_x|b' 'P|05|05_x|-' 'T|05|05_x|a|ok' 'T|05|05_x|b|ok' 'T|05|05_x|c|ok' \
+        'P|05|05-06_y|-' 'T|05|05-06_y|e|ok' 'T|05|05-06_y|f|skip' 'P|01|01_z|-' 'T|01|01_z|a|ok' 'T|01|01_z|b|ok')
+    want='GRADE lab=05_x score=100.0 lab_passed=2 lab_total=2 controls=2 earlier_passed=2 earlier_total=2 build=ok|controls (pass without your work, not scored): 05_x/a, 05_x/b|'
+    if [ "$got" = "$want" ]; then ok grade/solution-scores-100; else fail grade/solution-scores-100 "got:  $got" "want: $want"; fi
+    # Half done, a control broken, an earlier test of the same name as a
+    # control (not a control: controls are the lab's), a crashed program.
+    got=$(gr 'C|05_x|a' 'C|05_x|b' 'C|05-06_y|e' 'P|05|05_x|-' 'T|05|05_x|a|FAIL' 'T|05|05_x|b|ok' 'T|05|05_x|c|ok' \
+        'P|05|05-06_y|crashed' 'T|05|05-06_y|e|FAIL' 'T|05|05-06_y|f|FAIL' 'P|01|01_z|-' 'T|01|01_z|a|FAIL' 'T|01|01_z|b|ok')
+    want='GRADE lab=05_x score=50.0 lab_passed=1 lab_total=2 controls=3 earlier_passed=1 earlier_total=2 build=ok|controls (pass without your work, not scored): 05_x/a (fails now), 05_x/b, 05-06_y/e (fails now)|'
+    if [ "$got" = "$want" ] && grep -q '^score: 50.0% (1 of 2 tests of lab 05; 3 control(s) not scored); earlier stages: 1 of 2 (3 regression(s))$' "$T/report" &&
+        grep -q '^    05-06_y  *0/1    crashed failed: f$' "$T/report"; then
+        ok grade/controls-not-scored
+    else
+        fail grade/controls-not-scored "got:  $got" "want: $want" "$(cat "$T/report")"
+    fi
+    got=$(gr 'P|05|05_x|-' 'T|05|05_x|a|ok')
+    case $got in
+        *'controls: none'*'|') ok grade/no-controls ;;
+        *) fail grade/no-controls "$got" ;;
+    esac
+}
+
 test_markers
 cd "$T"
 test_marker_errors
@@ -623,6 +674,7 @@ if command -v git >/dev/null 2>&1; then
     test_diffs
     test_branches
 fi
+test_grade_score
 test_grade_pages
 test_docs_images
 test_help

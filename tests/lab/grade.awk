@@ -1,0 +1,100 @@
+# grade.awk - the report and the score of grade.sh, from its records.
+#
+#   awk -v nn=05 -v stage=05_bvh -v build=ok -v controls=known -f grade.awk RECORDS
+#
+# RECORDS, tab-separated, a program's P line before its T lines:
+#   C PROGRAM TEST               a control: a TEST() of the lab that passes in
+#                                the untouched handout (grade.sh finds them)
+#   P FROM PROGRAM NOTE          a test program, from stage FROM; NOTE is
+#                                did-not-compile, crashed, timed-out, exit-N
+#                                or - (lablib.sh, run_handout_test)
+#   T FROM PROGRAM TEST STATUS   one of its TEST()s: ok, FAIL or skip
+#                                (lablib.sh, test_statuses)
+# controls: "known" (the C lines are all of them) or "unknown" (none could
+# be found: every test is scored).
+#
+# The score is the share of the lab's own tests (FROM = nn) that pass,
+# leaving out the skipped ones and the controls: a test that passes without
+# the student's work measures nothing of it.  The controls are listed, with
+# their status now (one that fails now is a regression, like a failing
+# earlier test).  The last line is for scripts:
+#   GRADE lab=05_bvh score=42.9 lab_passed=3 lab_total=7 controls=2 earlier_passed=40 earlier_total=40 build=ok
+BEGIN { FS = "\t" }
+
+$1 == "C" { control[$2 SUBSEP $3] = 1; next }
+
+$1 == "P" {
+    n++
+    from[n] = $2; prog[n] = $3; note[n] = ($4 == "-" ? "" : $4)
+    index_of[$3] = n
+    next
+}
+
+$1 == "T" {
+    i = index_of[$3]
+    if ($2 == nn && (($3 SUBSEP $4) in control)) {
+        nc++
+        cname[nc] = $3 "/" $4
+        cstatus[nc] = $5
+        if ($5 == "FAIL") cfailed++
+        next
+    }
+    if ($5 == "skip") next
+    total[i]++
+    if ($5 == "ok") passed[i]++
+    else {
+        nf[i]++
+        if (nf[i] <= 5) failed[i] = failed[i] (nf[i] > 1 ? ", " : "") $4
+        else if (nf[i] == 6) failed[i] = failed[i] ", ..."
+    }
+}
+
+function line(i,    s) {
+    s = sprintf("    %-32s %4d/%-4d %s%s", prog[i], passed[i], total[i], (note[i] != "" ? note[i] " " : ""),
+        (failed[i] != "" ? "failed: " failed[i] : ""))
+    sub(/ +$/, "", s)
+    print s
+}
+
+END {
+    for (i = 1; i <= n; i++) {
+        if (from[i] == nn) {
+            lp += passed[i]; lt += total[i]
+        } else {
+            ep += passed[i]; et += total[i]
+            gp[from[i]] += passed[i]; gt[from[i]] += total[i]; groups[from[i]] = 1
+        }
+    }
+    printf "\nthis lab (tests of stage %s):\n", nn
+    for (i = 1; i <= n; i++) if (from[i] == nn) line(i)
+    printf "    %-32s %4d/%d\n", "total", lp, lt
+    if (controls != "known") {
+        print "    controls: unknown (no untouched handout to find them): every test is scored"
+    } else if (nc == 0) {
+        print "    controls: none (every test of this lab fails without your work)"
+    } else {
+        s = ""
+        for (k = 1; k <= nc; k++)
+            s = s (k > 1 ? ", " : "") cname[k] (cstatus[k] == "FAIL" ? " (fails now)" : "")
+        printf "    controls (pass without your work, not scored): %s\n", s
+    }
+    ng = 0
+    for (g in groups) order[++ng] = g
+    for (i = 2; i <= ng; i++) for (j = i; j > 1 && order[j - 1] > order[j]; j--) {
+        x = order[j]; order[j] = order[j - 1]; order[j - 1] = x
+    }
+    for (k = 1; k <= ng; k++) {
+        g = order[k]
+        printf "\nearlier: tests from stage %s (features the handout came with):\n", g
+        for (i = 1; i <= n; i++) if (from[i] == g) line(i)
+        printf "    %-32s %4d/%d\n", "total", gp[g], gt[g]
+    }
+    score = lt > 0 ? 100 * lp / lt : 0
+    printf "\nscore: %.1f%% (%d of %d tests of lab %s", score, lp, lt, nn
+    if (nc > 0) printf "; %d control(s) not scored", nc
+    printf "); earlier stages: %d of %d", ep, et
+    if (ep < et || cfailed > 0) printf " (%d regression(s))", et - ep + cfailed
+    printf "\n"
+    printf "GRADE lab=%s score=%.1f lab_passed=%d lab_total=%d controls=%d earlier_passed=%d earlier_total=%d build=%s\n",
+        stage, score, lp, lt, nc, ep, et, build
+}
