@@ -18,10 +18,18 @@ vec3 point_irradiance(const struct hit *h, vec3 from, vec3 intensity);
 
 /* How area lights are sampled: `samples` shadow rays per light, or, when
  * adaptive[0] > 0, adaptive[0] probe rays and adaptive[1] more only where
- * the probes disagree (a penumbra). */
+ * the probes disagree (a penumbra).  solid_angle: rectangles by the solid
+ * angle they subtend, not by area (sample_rect_solid_angle()).
+ * bsdf_pdf_cos: for multiple importance sampling, the density per unit
+ * solid angle with which the path's bounce at this point draws a direction
+ * of cosine cos(theta) to the normal, divided by that cosine (P(diffuse
+ * lobe) / pi); each shadow ray's light is then weighted against it by the
+ * power heuristic.  0: no MIS (weight 1). */
 struct shadow_sampling {
     int samples;
     int adaptive[2];
+    bool solid_angle;
+    real bsdf_pdf_cos;
 };
 
 /* The extra statistics counter: shading points that took the penumbra path. */
@@ -75,6 +83,35 @@ real light_picker_pdf_solid_angle(
 
 /* The point of the light at (u, v) in [0,1)^2: uniform over its area. */
 vec3 sample_area_light(const struct area_light *light, real u, real v);
+
+/* A point *y of the rectangle light drawn from (u, v) in [0,1)^2 uniformly
+ * in the solid angle it subtends seen from x (Urena, Fajardo and King, "An
+ * Area-Preserving Parametrization for Spherical Rectangles", 2013), and
+ * *pdf = 1 / that solid angle, per steradian.  False, and nothing set, when
+ * the light is no rectangle (a parallelogram, a triangle), when x lies in
+ * its plane, or when its solid angle is too small to compute accurately
+ * (RECT_SOLID_ANGLE_MIN): the caller samples its area then. */
+bool sample_rect_solid_angle(const struct area_light *light, vec3 x, real u, real v, vec3 *y, real *pdf);
+
+/* The power heuristic of multiple importance sampling (Veach and Guibas,
+ * "Optimally Combining Sampling Techniques for Monte Carlo Rendering",
+ * 1995, beta = 2): the weight of a sample that technique f drew (n_f
+ * samples, density pdf_f) when technique g (n_g samples, density pdf_g)
+ * could have drawn it too, (n_f pdf_f)^2 / ((n_f pdf_f)^2 + (n_g pdf_g)^2).
+ * The two weights of one point sum to 1; 1 when g cannot draw it. */
+real mis_power_heuristic(real n_f, real pdf_f, real n_g, real pdf_g);
+
+/* The density per unit solid angle with which one shadow ray of
+ * direct_irradiance() aimed at light number `light` (area lights, then
+ * sphere lights: as hit.light) from x draws the direction to its point y;
+ * 0 where it never draws it (x inside a sphere light, y seen edge-on). */
+real light_pdf(
+    const struct scene *s,
+    const struct shadow_sampling *sampling,
+    const struct light_picker *picker,
+    int light,
+    vec3 x,
+    vec3 y);
 
 /* Whether the segment from the surface at h to the point `to` is clear:
  * one shadow ray, an any-hit query. */

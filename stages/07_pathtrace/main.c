@@ -19,7 +19,9 @@ parse_command_line(
     char **argv,
     struct renderer *renderer,
     bool *use_bvh,
-    int *brute_max)
+    int *brute_max,
+    int *mis,
+    int *light_sampling)
 {
     const struct option_spec stage_options[] = {
         {
@@ -103,6 +105,22 @@ parse_command_line(
             .kind = OPT_UNSET,
             .dest = &renderer->nee,
             .help = "no shadow rays to area lights: paths must hit them",
+        },
+        {
+            .name = "mis",
+            .kind = OPT_CHOICE,
+            .dest = mis,
+            .choices = "off|on",
+            .arg = "off|on",
+            .help = "weigh shadow rays and bounces that hit a light by MIS (default on)",
+        },
+        {
+            .name = "light-sampling",
+            .kind = OPT_CHOICE,
+            .dest = light_sampling,
+            .choices = "area|solid-angle",
+            .arg = "HOW",
+            .help = "points on rectangle lights: uniform in area (default), solid-angle",
         },
         {
             .name = "no-rr",
@@ -221,10 +239,14 @@ main(int argc, char **argv)
     };
     bool use_bvh = true;
     int brute_max = BRUTE_FORCE_MAX_PRIMS;
+    int mis = 1; /* the index of "on" in off|on */
+    int light_sampling = 0; /* area */
     struct run run;
-    if (!parse_command_line(&run, argc, argv, &renderer, &use_bvh, &brute_max)) {
+    if (!parse_command_line(&run, argc, argv, &renderer, &use_bvh, &brute_max, &mis, &light_sampling)) {
         return run.status;
     }
+    renderer.mis = mis == 1;
+    renderer.shadow.solid_angle = light_sampling == 1;
     struct diag err;
     if (!choose_spp(&renderer, &run.opt, &err)) {
         return run_fail(&run, &err, EXIT_USAGE);

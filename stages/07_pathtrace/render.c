@@ -51,12 +51,48 @@ diffuse_albedo(const struct material *m, const struct hit *h)
     return m->albedo;
 }
 
+/* Multiple importance sampling (Veach and Guibas, "Optimally Combining
+ * Sampling Techniques for Monte Carlo Rendering", 1995): light from an
+ * area or sphere light reaches a diffuse point by two techniques, a shadow
+ * ray to a point drawn on the light (NEE, density p_light per steradian)
+ * and the path's own bounce when it happens to hit the light (density
+ * p_bsdf).  Each is good where the other is poor: NEE for a small light,
+ * the bounce for a large, close one, whose far parts NEE draws seldom
+ * (r^2 / cos(theta') is large there) though they add much.  Counting a
+ * light by both, each sample weighted by w = (n p)^2 / sum over techniques
+ * of (n_k p_k)^2 (the power heuristic, mis_power_heuristic() in light.c,
+ * n the samples per technique), keeps the estimate unbiased since the
+ * weights of every direction sum to 1, and takes the variance near the
+ * better of the two everywhere.  Point lights (no area: NEE only) and
+ * specular bounces (a single direction: the bounce only) keep weight 1.
+ * The adaptive shadow rays replace some estimates by closed forms: no MIS
+ * with them. */
+static bool
+mis_on(const struct renderer *renderer)
+{
+    return renderer->mis && renderer->nee && renderer->shadow.adaptive[0] == 0;
+}
+
+/* The probability that sample_bsdf() picks the diffuse lobe: its mean
+ * albedo over all lobes' mean reflectance (mirror or blend). */
+static real
+diffuse_lobe_probability(const struct material *m, vec3 albedo)
+{
+    bool has_mirror = m->kind == MAT_MIRROR || m->kind == MAT_BLEND;
+    real diffuse = albedo.x + albedo.y + albedo.z;
+    real mirror = has_mirror ? m->reflectance.x + m->reflectance.y + m->reflectance.z : 0;
+    return diffuse > 0 ? diffuse / (diffuse + mirror) : 0;
+}
+
 /* Next-event estimation: the direct light reaching the diffuse part of the
- * surface at h, by shadow rays to the lights (light.c), times albedo / pi. */
+ * surface at h, by shadow rays to the lights (light.c), times albedo / pi;
+ * with MIS, each shadow ray weighted against the diffuse bounce, whose
+ * density is P(diffuse) cos(theta) / pi. */
 static vec3
 direct_light(
     const struct renderer *renderer,
     const struct hit *h,
+    const struct material *m,
     vec3 albedo,
     struct rng *rng,
     struct stats *st)
@@ -65,6 +101,9 @@ direct_light(
     if (!renderer->nee) {
         sampling.samples = 0; /* area lights are left to the paths that hit them */
         sampling.adaptive[0] = 0;
+    }
+    if (mis_on(renderer)) {
+        sampling.bsdf_pdf_cos = diffuse_lobe_probability(m, albedo) * INV_PI;
     }
     vec3 e = direct_irradiance(&renderer->world, h, &sampling, &renderer->lights, rng, st);
     return vec3_scale(vec3_mul(albedo, e), INV_PI);
@@ -84,6 +123,20 @@ emitted(const struct renderer *renderer, const struct hit *h, const struct path 
     }
     return light_emitted(renderer->scene, h->light, h->front_face);
     /* END LAB */
+}
+
+/* The light a diffuse bounce found, with MIS: Le weighted against the
+ * shadow rays of the vertex it left (path->from), which could have drawn
+ * the same point with density light_pdf(). */
+static vec3
+emitted_mis(const struct renderer *renderer, const struct hit *h, const struct path *path)
+{
+    const struct scene *s = renderer->scene;
+    real pdf_light =
+        light_pdf(s, &renderer->shadow, &renderer->lights, h->light, path->from, h->p);
+    real samples = (real)renderer->shadow.samples;
+    real weight = mis_power_heuristic(1, path->pdf_bsdf, samples, pdf_light);
+    return vec3_scale(light_emitted(s, h->light, h->front_face), weight);
 }
 
 /* What a path draws its numbers for at each vertex (the Sobol sampler
@@ -129,7 +182,8 @@ shade(
     const struct scene *s = renderer->scene;
     if (h->light >= 0) {
         /* Lights are black as surfaces (SCENES.md): the path ends here. */
-        vec3 l = vec3_mul(path->beta, emitted(renderer, h, path));
+        vec3 le = path->pdf_bsdf > 0 ? emitted_mis(renderer, h, path) : emitted(renderer, h, path);
+        vec3 l = vec3_mul(path->beta, le);
         path->beta = vec3_splat(0);
         return l;
     }
@@ -142,7 +196,7 @@ shade(
     vec3 albedo = diffuse_albedo(m, h);
     vec3 l = vec3_splat(0);
     if (!vec3_is_zero(albedo)) {
-        l = vec3_mul(path->beta, direct_light(renderer, h, albedo, rng, st));
+        l = vec3_mul(path->beta, direct_light(renderer, h, m, albedo, rng, st));
     }
     struct bsdf_sample bs;
     real u[3];
@@ -153,6 +207,12 @@ shade(
     }
     path->beta = vec3_mul(path->beta, bs.weight);
     path->specular = bs.specular;
+    path->pdf_bsdf = 0;
+    if (!bs.specular && mis_on(renderer)) {
+        /* The density of the diffuse direction: P(diffuse) cos(theta) / pi. */
+        path->pdf_bsdf = diffuse_lobe_probability(m, albedo) * vec3_dot(h->n, bs.d) * INV_PI;
+        path->from = h->p;
+    }
     *r = spawn_ray(h, bs.d);
     st->rays_secondary++;
     return l;

@@ -74,6 +74,7 @@ struct renderer {
     int aa; /* enum aa_pattern */
     real aa_threshold;
     bool nee; /* next-event estimation: shadow rays to area lights */
+    bool mis; /* ... combined with the paths that hit them (multiple importance sampling) */
     bool rr; /* Russian roulette */
     int rr_depth; /* ... from this many rays on */
     int sampler; /* enum sampler_kind */
@@ -90,12 +91,16 @@ struct sample_id {
 
 /* A path being traced: its throughput beta (the product of the sampling
  * weights so far), whether its last bounce was specular, its length, and
- * which sample it is. */
+ * which sample it is.  With MIS, where its last bounce was diffuse: the
+ * density pdf_bsdf (per steradian) of that bounce's direction and the
+ * point `from` it left, which weigh a light the bounce finds (0: none). */
 struct path {
     vec3 beta;
     bool specular;
     int depth;
     struct sample_id id;
+    real pdf_bsdf;
+    vec3 from;
 };
 
 /* One vertex of a path, where *r hit h: returns the light it adds to the
