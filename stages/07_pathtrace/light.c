@@ -339,7 +339,16 @@ sphere_sample_irradiance(
     real t = dist * cos_theta - safe_sqrt(radius2 - dist2 * sin_theta * sin_theta);
     vec3 y = vec3_madd(h->p, d, t);
     real pdf = 1 / (2 * PI * one_minus_cos_max);
-    return shadow_ray_estimate(w, h, sampling, light->radiance, y, vec3_dot(h->n, d), pdf, st, blocked);
+    return shadow_ray_estimate(
+        w,
+        h,
+        sampling,
+        light->radiance,
+        y,
+        vec3_dot(h->n, d),
+        pdf,
+        st,
+        blocked);
 }
 
 /* A light the shadow rays sample: an area light or a sphere light (the
@@ -376,7 +385,8 @@ sum_light_samples(
         if (light->area) {
             vec3 y;
             real pdf = 0;
-            if (!sampling->solid_angle || !sample_rect_solid_angle(light->area, h->p, u, v, &y, &pdf)) {
+            if (!sampling->solid_angle
+                || !sample_rect_solid_angle(light->area, h->p, u, v, &y, &pdf)) {
                 fold_into_triangle(light->area, &u, &v);
                 y = sample_area_light(light->area, u, v);
             }
@@ -755,7 +765,9 @@ direct_irradiance(
         e = vec3_add(e, sphere_light_irradiance(w, h, sphere, sampling, rng, st));
     }
     if (picker->n > 0) {
-        e = vec3_add(e, triangle_lights_irradiance(w, h, sampling, picker, sampling->samples, rng, st));
+        e = vec3_add(
+            e,
+            triangle_lights_irradiance(w, h, sampling, picker, sampling->samples, rng, st));
     }
     return e;
 }

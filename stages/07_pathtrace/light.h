@@ -91,7 +91,8 @@ vec3 sample_area_light(const struct area_light *light, real u, real v);
  * the light is no rectangle (a parallelogram, a triangle), when x lies in
  * its plane, or when its solid angle is too small to compute accurately
  * (RECT_SOLID_ANGLE_MIN): the caller samples its area then. */
-bool sample_rect_solid_angle(const struct area_light *light, vec3 x, real u, real v, vec3 *y, real *pdf);
+bool
+sample_rect_solid_angle(const struct area_light *light, vec3 x, real u, real v, vec3 *y, real *pdf);
 
 /* The power heuristic of multiple importance sampling (Veach and Guibas,
  * "Optimally Combining Sampling Techniques for Monte Carlo Rendering",

@@ -242,7 +242,15 @@ main(int argc, char **argv)
     int mis = 1; /* the index of "on" in off|on */
     int light_sampling = 0; /* area */
     struct run run;
-    if (!parse_command_line(&run, argc, argv, &renderer, &use_bvh, &brute_max, &mis, &light_sampling)) {
+    if (!parse_command_line(
+            &run,
+            argc,
+            argv,
+            &renderer,
+            &use_bvh,
+            &brute_max,
+            &mis,
+            &light_sampling)) {
         return run.status;
     }
     renderer.mis = mis == 1;

@@ -132,8 +132,7 @@ static vec3
 emitted_mis(const struct renderer *renderer, const struct hit *h, const struct path *path)
 {
     const struct scene *s = renderer->scene;
-    real pdf_light =
-        light_pdf(s, &renderer->shadow, &renderer->lights, h->light, path->from, h->p);
+    real pdf_light = light_pdf(s, &renderer->shadow, &renderer->lights, h->light, path->from, h->p);
     real samples = (real)renderer->shadow.samples;
     real weight = mis_power_heuristic(1, path->pdf_bsdf, samples, pdf_light);
     return vec3_scale(light_emitted(s, h->light, h->front_face), weight);

@@ -3,9 +3,10 @@
  * expected image (TESTING.md T23, Nori's test-direct: one reference for
  * every sampling strategy).
  *
- *  - Russian roulette, next-event estimation and the Sobol sampler are
- *    unbiased: --no-rr, --no-nee and --sampler sobol --aa sobol converge
- *    to the default's image.  Two-sample tests: K renders
+ *  - Russian roulette, next-event estimation, the Sobol sampler, MIS and
+ *    solid-angle light sampling are unbiased: --no-rr, --no-nee, --sampler
+ *    sobol --aa sobol and --mis off --light-sampling solid-angle converge
+ *    to the default's image (MIS on, lights sampled by area).  Two-sample tests: K renders
  *    of each (different seeds), per 16x16 block and channel and for the
  *    whole image, Welch's t-test of the block means (pathcheck_block_welch),
  *    on cornell_diffuse_area (NEE of a small light) and
@@ -44,10 +45,10 @@
 #define TEXT(x) TEXT_(x)
 #define BLOCK 16
 
-/* Per comparison: the blocks and the whole image, 3 channels each.  Six
+/* Per comparison: the blocks and the whole image, 3 channels each.  Eight
  * two-sample comparisons and two against the direct-light reference. */
 #define N_BLOCKS ((SIZE / BLOCK) * (SIZE / BLOCK))
-#define N_STAT_TESTS (8.0 * 3 * (N_BLOCKS + 1))
+#define N_STAT_TESTS (10.0 * 3 * (N_BLOCKS + 1))
 
 static double
 stat_level(void)
@@ -77,22 +78,23 @@ render_set(
     return true;
 }
 
-/* Compare the default with --no-rr, with --no-nee and with the Sobol
- * sampler on one scene. */
+/* Compare the default with --no-rr, with --no-nee, with the Sobol
+ * sampler and with MIS off and solid-angle light sampling on one scene. */
 static void
 compare_switches(const char *scene, uint64_t seed)
 {
     static const char *const no_rr[] = {"--no-rr", NULL};
     static const char *const no_nee[] = {"--no-nee", NULL};
     static const char *const sobol[] = {"--sampler", "sobol", "--aa", "sobol", NULL};
+    static const char *const lights[] = {"--mis", "off", "--light-sampling", "solid-angle", NULL};
     struct pathcheck_batches base;
     struct pathcheck_batches other;
     if (!render_set(scene, NULL, seed, &base)) {
         CHECK(false);
         return;
     }
-    const char *const *variants[3] = {no_rr, no_nee, sobol};
-    for (int v = 0; v < 3; v++) {
+    const char *const *variants[4] = {no_rr, no_nee, sobol, lights};
+    for (int v = 0; v < 4; v++) {
         if (!render_set(scene, variants[v], seed + 100 * (v + 1), &other)) {
             CHECK(false);
             continue;

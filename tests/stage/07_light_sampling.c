@@ -120,13 +120,20 @@ part_solid_angle(const struct area_light *l, double s0, double s1, double t0, do
     double c[4][3];
     double st[4][2] = {{s0, t0}, {s1, t0}, {s1, t1}, {s0, t1}};
     for (int i = 0; i < 4; i++) {
-        vec3 p = vec3_madd(vec3_madd(l->corner, l->edge1, (real)st[i][0]), l->edge2, (real)st[i][1]);
+        vec3 p =
+            vec3_madd(vec3_madd(l->corner, l->edge1, (real)st[i][0]), l->edge2, (real)st[i][1]);
         to_double(p, c[i]);
     }
     double xd[3];
     to_double(x, xd);
-    double t1c[3][3] = {{c[0][0], c[0][1], c[0][2]}, {c[1][0], c[1][1], c[1][2]}, {c[2][0], c[2][1], c[2][2]}};
-    double t2c[3][3] = {{c[0][0], c[0][1], c[0][2]}, {c[2][0], c[2][1], c[2][2]}, {c[3][0], c[3][1], c[3][2]}};
+    double t1c[3][3] = {
+        {c[0][0], c[0][1], c[0][2]},
+        {c[1][0], c[1][1], c[1][2]},
+        {c[2][0], c[2][1], c[2][2]}};
+    double t2c[3][3] = {
+        {c[0][0], c[0][1], c[0][2]},
+        {c[2][0], c[2][1], c[2][2]},
+        {c[3][0], c[3][1], c[3][2]}};
     return stagecheck_triangle_solid_angle(t1c, xd) + stagecheck_triangle_solid_angle(t2c, xd);
 }
 
@@ -207,7 +214,9 @@ TEST(rect_solid_angle_sampling_is_uniform_in_solid_angle)
         for (int c = 0; c < GRID * GRID; c++) {
             double s0 = (double)(c % GRID) / GRID;
             double t0 = (double)(c / GRID) / GRID;
-            double expect = (double)n * part_solid_angle(&l, s0, s0 + 1.0 / GRID, t0, t0 + 1.0 / GRID, x) / omega;
+            double expect = (double)n
+                            * part_solid_angle(&l, s0, s0 + 1.0 / GRID, t0, t0 + 1.0 / GRID, x)
+                            / omega;
             chi2 += (counts[c] - expect) * (counts[c] - expect) / expect;
         }
         double p_chi2 = stattest_chi2_pvalue(chi2, GRID * GRID - 1);
@@ -246,8 +255,8 @@ sample_is_sane(const struct area_light *l, vec3 x, real u, real v, bool *refused
     double size = (double)(vec3_length(l->edge1) + vec3_length(l->edge2));
     double scale = size + (double)vec3_length(vec3_sub(x, l->corner));
     double tol = 1e-3;
-    return isfinite(y.x) && isfinite(y.y) && isfinite(y.z) && isfinite(pdf) && pdf > 0
-           && s >= -tol && s <= 1 + tol && t >= -tol && t <= 1 + tol && off <= 1e-4 * scale;
+    return isfinite(y.x) && isfinite(y.y) && isfinite(y.z) && isfinite(pdf) && pdf > 0 && s >= -tol
+           && s <= 1 + tol && t >= -tol && t <= 1 + tol && off <= 1e-4 * scale;
 }
 
 TEST(rect_solid_angle_degenerate_cases_give_no_nan)
@@ -298,7 +307,10 @@ TEST(rect_solid_angle_degenerate_cases_give_no_nan)
             CHECK_MSG(isfinite(p) && p >= 0, "light %d, point %d: pdf %g", li, k, (double)p);
         }
     }
-    printf("degenerate configurations: %d samples checked, %d refused (sampled by area)\n", sampled, refused);
+    printf(
+        "degenerate configurations: %d samples checked, %d refused (sampled by area)\n",
+        sampled,
+        refused);
     CHECK(sampled > 0 && refused > 0);
     /* In the plane it is always refused. */
     bool r;
@@ -345,13 +357,22 @@ mis_estimate(
 
 /* A t-test of the mean of many MIS estimates at (p, up) against want. */
 static void
-check_mis_sum(const char *what, const struct scene *s, bool solid_angle, vec3 p, double want, double n_tests)
+check_mis_sum(
+    const char *what,
+    const struct scene *s,
+    bool solid_angle,
+    vec3 p,
+    double want,
+    double n_tests)
 {
     struct world w = world_make(s);
     struct light_picker lp;
     struct diag err;
     CHECK(light_picker_build(&lp, s, &err));
-    struct shadow_sampling sampling = {.samples = 1, .solid_angle = solid_angle, .bsdf_pdf_cos = INV_PI};
+    struct shadow_sampling sampling = {
+        .samples = 1,
+        .solid_angle = solid_angle,
+        .bsdf_pdf_cos = INV_PI};
     struct hit h = {.p = p, .n = {0, 1, 0}, .ng = {0, 1, 0}, .light = -1};
     struct rng rng = rng_make(7403, (uint64_t)(p.x * 1000) + solid_angle);
     struct stats st = {0};
@@ -440,11 +461,22 @@ TEST(mis_and_solid_angle_keep_the_image)
     const char *scene = test_tmp_path("big_light.scene");
     test_write_file(scene, big_light_scene);
     static const char *const base_args[] = {"-W", SIZE, "-H", SIZE, "--spp", "16", NULL};
-    static const char *const mis_off[] = {"-W", SIZE, "-H", SIZE, "--spp", "16", "--mis", "off", NULL};
+    static const char *const mis_off[] =
+        {"-W", SIZE, "-H", SIZE, "--spp", "16", "--mis", "off", NULL};
     static const char *const solid[] =
         {"-W", SIZE, "-H", SIZE, "--spp", "16", "--light-sampling", "solid-angle", NULL};
     static const char *const both[] = {
-        "-W", SIZE, "-H", SIZE, "--spp", "16", "--mis", "off", "--light-sampling", "solid-angle", NULL};
+        "-W",
+        SIZE,
+        "-H",
+        SIZE,
+        "--spp",
+        "16",
+        "--mis",
+        "off",
+        "--light-sampling",
+        "solid-angle",
+        NULL};
     const char *const *variants[N_VARIANTS] = {mis_off, solid, both};
     const char *names[N_VARIANTS] = {"--mis off", "--light-sampling solid-angle", "both"};
     double n_tests = N_VARIANTS * 3.0 * (BLOCKS_PER_SIDE * BLOCKS_PER_SIDE + 1);
@@ -464,7 +496,14 @@ TEST(mis_and_solid_angle_keep_the_image)
         CHECK(other.nan_pixels == 0);
         struct pathcheck_tally blocks = pathcheck_tally_start();
         struct pathcheck_tally whole = pathcheck_tally_start();
-        CHECK(pathcheck_block_welch(base.images, base.k, other.images, other.k, BLOCK, level(n_tests), &blocks));
+        CHECK(pathcheck_block_welch(
+            base.images,
+            base.k,
+            other.images,
+            other.k,
+            BLOCK,
+            level(n_tests),
+            &blocks));
         CHECK(pathcheck_block_welch(
             base.images,
             base.k,

@@ -446,6 +446,7 @@ function q_nee_rr(    j, sc, st, s, v, a, b, c, d, found, r, any) {
         }
     }
     print ""
+    levers()
     print "RR ends a path with a probability and reweights the survivors: it cuts time and adds variance."
     print "It pays when the saved time outweighs the added noise; the time saved is largest where paths"
     print "are long (bright walls, open glass), the added noise largest where rare long paths carry the light."
@@ -462,6 +463,44 @@ function q_nee_rr(    j, sc, st, s, v, a, b, c, d, found, r, any) {
         }
     }
     print ""
+}
+
+# The other knobs of a path tracer (sampler, MIS, light sampling): every
+# family "nee=on rr=on KNOB..." against "nee=on rr=on" (the defaults) at the
+# largest spp both ran, with the efficiency gain.
+function levers(    s, st, j, sc, r, fam, best, a, b, any, seen) {
+    any = 0
+    for (s = 1; s <= NST; s++) {
+        st = STAGE[s]
+        for (j = 1; j <= NSC; j++) {
+            sc = SCENE[j]
+            delete seen
+            for (r = 1; r <= N; r++) {
+                fam = F[r]
+                if (S[r] != st || SC[r] != sc || index(fam, "nee=on rr=on ") != 1 || (fam in seen)) continue
+                seen[fam] = 1
+                best = ""
+                for (b = 1; b <= N; b++) {
+                    if (S[b] != st || SC[b] != sc || F[b] != fam || !find(st, sc, "nee=on rr=on", V[b])) continue
+                    if (best == "" || V[b] + 0 > best + 0) best = V[b]
+                }
+                if (best == "") continue
+                if (!any) {
+                    print "The other levers of the path tracer, each against the defaults (`nee=on rr=on`) at the largest"
+                    print "spp both ran; efficiency gain = efficiency / the defaults' efficiency:"
+                    print ""
+                    print "| stage | scene | spp | knobs | relMSE | seconds | efficiency | gain |"
+                    print "|---|---|---|---|---|---|---|---|"
+                    any = 1
+                }
+                a = find(st, sc, "nee=on rr=on", best)
+                b = find(st, sc, fam, best)
+                printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", st, sc, best, substr(fam, 14), g3(GI[b]), secs(T[b]),
+                    g3(EFF[b]), times(EFF[b] / EFF[a])
+            }
+        }
+    }
+    if (any) print ""
 }
 
 function q_bvh(    i, j, st, nt, tri, on, off, n, sp, cross, nrow, last_off, k, nsp, p0, p1) {

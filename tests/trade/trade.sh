@@ -294,6 +294,17 @@ plan_pathtrace() { # 07: spp x NEE on/off x RR on/off; max depth
                     "nee=on rr=on sampler=sobol aa=sobol" "$n" 0
             done
         fi
+        if has "$st" --mis && area_scene "$sc"; then
+            for n in $PT_SPP $PT_SPP_MAIN_EXTRA; do
+                emit_seeds "$(pt_seeds "$n")" "$st" "$sc" "spp=$n nee=on rr=on mis=off" "nee=on rr=on mis=off" "$n" 0
+            done
+        fi
+        if has "$st" --light-sampling && area_scene "$sc"; then
+            for n in $PT_SPP $PT_SPP_MAIN_EXTRA; do
+                emit_seeds "$(pt_seeds "$n")" "$st" "$sc" "spp=$n nee=on rr=on light=solid-angle" \
+                    "nee=on rr=on light=solid-angle" "$n" 0
+            done
+        fi
         if has "$st" --rr-depth; then
             for d in $PT_RR_DEPTH; do
                 emit_seeds "$SEEDS" "$st" "$sc" "spp=16 nee=on rr=on rrdepth=$d" "rr start (spp=16)" "$d" 0
@@ -373,6 +384,8 @@ knob_args() {
         brute=*) args="$args --brute-force-max ${k#*=}" ;;
         sampler=*) args="$args --sampler ${k#*=}" ;;
         rrdepth=*) args="$args --rr-depth ${k#*=}" ;;
+        mis=*) args="$args --mis ${k#*=}" ;;
+        light=*) args="$args --light-sampling ${k#*=}" ;;
         nee=off) args="$args --no-nee" ;;
         rr=off) args="$args --no-rr" ;;
         *)
