@@ -84,10 +84,21 @@ def triangle_mesh(v, bsdf):
     return mesh
 
 
+def rotation(axis, degrees):
+    """The matrix of a rotation by `degrees` about `axis`, counter-clockwise
+    when the axis points at the viewer (Rodrigues' formula)."""
+    k = np.array(axis, dtype=np.float64)
+    k = k / np.linalg.norm(k)
+    a = np.radians(degrees)
+    cross = np.array([[0, -k[2], k[1]], [k[2], 0, -k[0]], [-k[1], k[0], 0]])
+    return np.identity(3) + np.sin(a) * cross + (1 - np.cos(a)) * cross @ cross
+
+
 def glb_triangles(words, scene_path):
     """The corners of the triangles of a `mesh file F ... [scale S]
-    [translate X Y Z]` statement whose .glb holds one mesh at its node's
-    identity transform (the bunny of scenes/models), scaled then moved."""
+    [rotate AX AY AZ DEG] [translate X Y Z]` statement whose .glb holds one
+    mesh at its node's identity transform (the bunny of scenes/models):
+    scaled, then rotated, then moved (docs/scene-format.md)."""
     import json
     import os
     import struct
@@ -115,14 +126,15 @@ def glb_triangles(words, scene_path):
             gltf["accessors"][prim["indices"]]["componentType"]]
         tris.append(pos[accessor(prim["indices"], kind, 1).ravel()])
     v = np.concatenate(tris)
-    for key, op in (("scale", "s"), ("translate", "t")):
-        if key in words:
-            if op == "s":
-                v = v * float(word(words, "scale"))
-            else:
-                v = v + np.array(floats(words, "translate"))
-    if set(words) & {"rotate", "matrix"}:
-        fail("mesh: only a uniform scale and a translation are translated")
+    if "matrix" in words:
+        fail("mesh: only scale, rotate and translate are translated")
+    if "scale" in words:
+        v = v * float(word(words, "scale"))
+    if "rotate" in words:
+        r = floats(words, "rotate", 4)
+        v = v @ rotation(r[:3], r[3]).T
+    if "translate" in words:
+        v = v + np.array(floats(words, "translate"))
     return v
 
 

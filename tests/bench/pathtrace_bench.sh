@@ -2,12 +2,14 @@
 # pathtrace_bench.sh - how fast stage 07 converges on the Cornell scenes,
 # beside Mitsuba 3 when it can be had.
 #
-# For each scene, stage 07 with its defaults and with the Sobol sampler
-# (--sampler sobol --aa sobol): spp x relMSE against Mitsuba's converged reference (a
-# constant for an unbiased estimator: relMSE falls as 1/spp), seconds per
-# spp at 256x256 on 2 threads, and from the two the time to reach the
-# scene's target relMSE (1e-3; 1e-2 for the caustics of
-# cornell_specular_area; bunny_box, which has no reference, is timed only).
+# For each scene, stage 07 with its defaults (MIS on, lights sampled by
+# area), with --mis off (as before MIS), with --light-sampling solid-angle
+# and with the Sobol sampler (--sampler sobol --aa sobol): spp x relMSE
+# against Mitsuba's converged reference (a constant for an unbiased
+# estimator: relMSE falls as 1/spp), seconds per spp at 256x256 on 2
+# threads, and from the two the time to reach the scene's target relMSE
+# (1e-3; 1e-2 for the caustics of cornell_specular_area; bunny_cornell, the
+# scene library's bunny in the box, has no reference and is timed only).
 # Mitsuba 3 (`path` integrator, independent
 # sampler; variants llvm_ad_rgb and scalar_rgb) renders the same scenes
 # (tests/bench/mitsuba_render.py translates them), interleaved with ours:
@@ -17,7 +19,7 @@
 # of all threads is printed beside them, with the time to the target and
 # the ratio computed from it too (steadier on a loaded machine; on a quiet
 # one, wall-clock x 2 threads is about the processor time).  Without a
-# reference (bunny_box) the ratios are those of the seconds per spp.
+# reference (bunny_cornell) the ratios are those of the seconds per spp.
 # Last, cornell_diffuse_area is rendered by stage 07 at the spp predicted
 # for relMSE 1e-3, to check the prediction.
 #
@@ -31,7 +33,7 @@
 #
 # Times, so never part of `make test`.  Run from the project root after
 # `make`:  sh tests/bench/pathtrace_bench.sh   (SPP, ROUNDS, SCENES to
-# change the defaults 32, 2 and the three reference scenes).
+# change the defaults 32, 2 and the four scenes).
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 render=$root/build/07_pathtrace/render
@@ -39,7 +41,7 @@ imgcmp=$root/build/tools/imgcmp
 python=$root/build/mitsuba-venv/bin/python
 spp=${SPP:-32}
 rounds=${ROUNDS:-2}
-scenes=${SCENES:-cornell_diffuse_area cornell_specular_area cornell_diffuse_point bunny_box}
+scenes=${SCENES:-cornell_diffuse_area cornell_specular_area cornell_diffuse_point bunny_cornell}
 work=$(mktemp -d "${TMPDIR:-/tmp}/pathtrace-bench.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 trap 'exit 130' INT TERM
@@ -54,24 +56,10 @@ stat() {
     sed -n "s/.*\"$2\": \([-0-9.e+]*\).*/\1/p" "$1" | head -n 1
 }
 
-# scene_file SCENE: the scene's file.  bunny_box (until the scene library
-# has one) is the Stanford bunny (scenes/models/bunny.glb, 69,451
-# triangles, white, flat-shaded) in the Cornell box of
-# cornell_diffuse_area, written into the work directory.
+# scene_file SCENE: the scene's file (bunny_cornell: the Stanford bunny,
+# 69,451 triangles, in the Cornell box of cornell_diffuse_area).
 scene_file() {
-    if [ "$1" != bunny_box ] || [ -f "$root/scenes/$1.scene" ]; then
-        echo "$root/scenes/$1.scene"
-        return
-    fi
-    if [ ! -f "$work/bunny_box.scene" ]; then
-        {
-            grep -E '^(camera|image|material|quad|area_light) ' \
-                "$root/scenes/cornell_diffuse_area.scene"
-            echo "mesh file \"$root/scenes/models/bunny.glb\" material white" \
-                "scale 6 translate 0.1 -0.198 0"
-        } >"$work/bunny_box.scene"
-    fi
-    echo "$work/bunny_box.scene"
+    echo "$root/scenes/$1.scene"
 }
 
 # relmse IMAGE SCENE: relMSE of IMAGE against the scene's GI reference
@@ -153,6 +141,9 @@ for scene in $scenes; do
     : >"$work/rows"
     for round in $(seq 1 "$rounds"); do
         echo "stagelight_07 $(ours "$scene" "$spp" "$round")" >>"$work/rows"
+        echo "stagelight_07_mis_off $(ours "$scene" "$spp" "$round" --mis off)" >>"$work/rows"
+        echo "stagelight_07_solid_angle $(ours "$scene" "$spp" "$round" --light-sampling solid-angle)" \
+            >>"$work/rows"
         echo "stagelight_07_sobol $(ours "$scene" "$spp" "$round" --sampler sobol --aa sobol)" \
             >>"$work/rows"
         for v in $variants; do
