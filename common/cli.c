@@ -12,6 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "aov.h"
 #include "scene.h"
 
 #define STAGELIGHT_VERSION "1.0"
@@ -29,6 +30,7 @@ enum shared_id {
     ID_STRICT,
     ID_CAMERA,
     ID_MAX_MEMORY,
+    ID_AOV,
     ID_HELP,
     ID_VERSION,
 };
@@ -61,6 +63,11 @@ static const struct shared_option shared_options[] = {
      "max-memory",
      "MIB",
      "refuse a render estimated to need more memory than this (default 4096)"},
+    {ID_AOV,
+     0,
+     "aov",
+     "LIST",
+     "also write render passes: depth,normal,albedo,id,material,feature (docs/aov.md)"},
     {ID_HELP, 0, "help", NULL, "print this help"},
     {ID_VERSION, 0, "version", NULL, "print the version"},
 };
@@ -278,6 +285,8 @@ apply_shared(
         return true;
     case ID_MAX_MEMORY:
         return parse_int_in(name, value, 1, 1 << 30, &opt->max_memory_mib, err);
+    case ID_AOV:
+        return aov_parse_list(value, &opt->aov, err);
     case ID_HELP:
     case ID_VERSION:
         return true;

@@ -26,6 +26,7 @@ struct options {
     const char *camera; /* --camera: a glTF scene's camera by name; NULL: its first */
     int max_memory_mib; /* --max-memory: refuse a render estimated to need more (MiB);
                            default SCENE_DEFAULT_MAX_BYTES */
+    unsigned aov; /* --aov: the render passes to write, bit 1u << enum aov_pass (aov.h) */
 };
 
 enum option_kind {

@@ -56,14 +56,26 @@ check_output(const char *path, struct diag *err)
 
 /* Every file the run will write (an output option added later adds its
  * line here).  "-" is standard output, which is no file. */
-static void
-collect_outputs(struct run *run)
+static bool
+collect_outputs(struct run *run, struct diag *err)
 {
     run->outputs[run->n_outputs++] = (struct named_file){"-o", run->output};
     const char *stats = run->opt.stats_path;
     if (stats && strcmp(stats, STDOUT_NAME) != 0) {
         run->outputs[run->n_outputs++] = (struct named_file){"--stats", stats};
     }
+    for (int pass = 0; pass < AOV_COUNT; pass++) {
+        if (!(run->opt.aov & (1u << pass))) {
+            continue;
+        }
+        char *path = run->aov_paths[pass];
+        if (!aov_path(run->output, pass, path, sizeof run->aov_paths[pass])) {
+            diag_set(err, NULL, 0, 0, "--aov: the name of '%s' is too long", run->output);
+            return false;
+        }
+        run->outputs[run->n_outputs++] = (struct named_file){"--aov", path};
+    }
+    return true;
 }
 
 static bool
@@ -98,7 +110,9 @@ run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage)
     if (!check_output(run->output, &err)) {
         return stop(run, &err, EXIT_USAGE);
     }
-    collect_outputs(run);
+    if (!collect_outputs(run, &err)) {
+        return stop(run, &err, EXIT_USAGE);
+    }
     const struct named_file scene = {"the scene", run->opt.scene_path};
     return check_identities(run, &scene, 1);
 }
@@ -332,11 +346,27 @@ publish_all(struct atomic_file *files, int n)
     return status;
 }
 
-/* Write the image and the statistics, all or none; returns the exit
- * status.  "--stats -" goes to standard output once the files are in
- * place. */
+/* Which image output i is: the render, a pass, or none (the statistics). */
+static const struct image *
+output_image(const struct run *run, int i, const struct image *image, const struct image *passes)
+{
+    const char *path = run->outputs[i].path;
+    if (path == run->output) {
+        return image;
+    }
+    for (int pass = 0; pass < AOV_COUNT; pass++) {
+        if (path == run->aov_paths[pass]) {
+            return &passes[pass];
+        }
+    }
+    return NULL;
+}
+
+/* Write the image, the statistics and the passes, all or none; returns
+ * the exit status.  "--stats -" goes to standard output once the files
+ * are in place. */
 static int
-write_outputs(struct run *run, const struct image *image)
+write_outputs(struct run *run, const struct image *image, const struct image *passes)
 {
     run->rep.peak_rss_bytes = peak_rss_bytes();
     run->rep.seconds_total = clock_seconds() - run->start;
@@ -349,8 +379,9 @@ write_outputs(struct run *run, const struct image *image)
             return abandon(files, n, &err);
         }
         n++;
-        if (path == run->output) {
-            if (!image_write_to(image, &files[n - 1], &err)) {
+        const struct image *img = output_image(run, i, image, passes);
+        if (img) {
+            if (!image_write_to(img, &files[n - 1], &err)) {
                 return abandon(files, n, &err);
             }
         } else {
@@ -378,6 +409,35 @@ write_outputs(struct run *run, const struct image *image)
     return EXIT_OK;
 }
 
+/* The --aov passes (none asked for: nothing to do, nothing spent). */
+static int
+render_passes(struct run *run, const struct render_job *job, struct image passes[AOV_COUNT])
+{
+    struct diag err;
+    if (!run->opt.aov) {
+        return EXIT_OK;
+    }
+    if (!run->aov.first_hit) {
+        diag_set(&err, NULL, 0, 0, "--aov: %s does not write render passes", run->stage);
+        diag_print(stderr, &err, "error");
+        return EXIT_USAGE;
+    }
+    bool interrupted;
+    double start = clock_seconds();
+    if (!aov_render(&run->aov, &run->scene, run->opt.aov, job, passes, &interrupted, &err)) {
+        if (interrupted) {
+            fprintf(
+                stderr,
+                "interrupted before the render passes were complete; nothing written\n");
+            return EXIT_INTERRUPTED;
+        }
+        diag_print(stderr, &err, "error");
+        return EXIT_RESOURCES;
+    }
+    report_set(&run->rep, "seconds_aov", clock_seconds() - start, false);
+    return EXIT_OK;
+}
+
 int
 run_render(struct run *run, const struct render_job *job, int spp_per_pass)
 {
@@ -387,25 +447,33 @@ run_render(struct run *run, const struct render_job *job, int spp_per_pass)
         return EXIT_USAGE;
     }
     signals_install();
+    /* The passes first: an interrupted progressive render still writes
+     * its image, and then every output. */
+    struct image passes[AOV_COUNT] = {{0}};
+    int status = render_passes(run, job, passes);
     struct image image = {0};
     struct render_result result;
-    if (!render_image(job, &image, &result, &err)) {
+    if (status == EXIT_OK && !render_image(job, &image, &result, &err)) {
         diag_print(stderr, &err, "error");
-        return EXIT_RESOURCES;
+        status = EXIT_RESOURCES;
     }
-    if (result.passes_done == 0) {
+    if (status == EXIT_OK && result.passes_done == 0) {
         fprintf(stderr, "interrupted before the image was complete; nothing written\n");
-        image_free(&image);
-        return EXIT_INTERRUPTED;
+        status = EXIT_INTERRUPTED;
     }
-    if (result.interrupted) {
+    if (status == EXIT_OK && result.interrupted) {
         fprintf(
             stderr,
             "interrupted: writing the image after %d complete passes\n",
             result.passes_done);
     }
-    fill_report(run, job, &result, spp_per_pass);
-    int status = write_outputs(run, &image);
+    if (status == EXIT_OK) {
+        fill_report(run, job, &result, spp_per_pass);
+        status = write_outputs(run, &image, passes);
+    }
+    for (int pass = 0; pass < AOV_COUNT; pass++) {
+        image_free(&passes[pass]);
+    }
     image_free(&image);
     return status;
 }

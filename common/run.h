@@ -14,6 +14,7 @@
 
 #include <stdbool.h>
 
+#include "aov.h"
 #include "cli.h"
 #include "diag.h"
 #include "driver.h"
@@ -31,8 +32,8 @@ enum exit_status {
     EXIT_INTERRUPTED = 130, /* the shell's code for death by SIGINT */
 };
 
-/* The most files a run writes (-o and --stats now). */
-#define RUN_MAX_OUTPUTS 4
+/* The most files a run writes (-o, --stats and one per --aov pass). */
+#define RUN_MAX_OUTPUTS (4 + AOV_COUNT)
 
 /* One run of `render`, from the command line to the written outputs. */
 struct run {
@@ -46,6 +47,8 @@ struct run {
     struct scene scene; /* loaded by run_load_scene */
     bool scene_loaded;
     struct report rep; /* what --stats and the summary report */
+    struct aov_source aov; /* set by the stage before run_render: what --aov asks of it */
+    char aov_paths[AOV_COUNT][1024]; /* where each --aov pass goes (aov_path) */
     int status; /* the exit status once a step has returned false */
 };
 

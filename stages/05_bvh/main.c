@@ -76,6 +76,28 @@ build_acceleration(struct renderer *renderer, bool use_bvh, struct report *rep, 
     return true;
 }
 
+/* What the render passes (--aov, aov.h) ask of the stage: the ray through
+ * a point of the film, and the first surface along a ray. */
+static ray
+pass_camera_ray(const void *ctx, real film_x, real film_y)
+{
+    const struct renderer *renderer = ctx;
+    return camera_ray(&renderer->camera, film_x, film_y);
+}
+
+static bool
+pass_first_hit(const void *ctx, ray r, real t_max, struct aov_hit *out)
+{
+    const struct renderer *renderer = ctx;
+    struct stats uncounted = {0};
+    struct hit h;
+    if (!world_intersect(&renderer->world, r, t_max, &h, &uncounted)) {
+        return false;
+    }
+    *out = (struct aov_hit){h.t, h.p, h.n, h.prim, h.material};
+    return true;
+}
+
 /* One ray through each pixel centre, once. */
 static int
 render(struct renderer *renderer, struct run *run)
@@ -84,6 +106,7 @@ render(struct renderer *renderer, struct run *run)
     job.pixel = render_pixel;
     renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
     run->rep.extra_names[STAT_PENUMBRA] = "penumbra_pixels";
+    run->aov = (struct aov_source){renderer, pass_camera_ray, pass_first_hit};
     return run_render(run, &job, 1);
 }
 
