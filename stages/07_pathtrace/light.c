@@ -279,6 +279,29 @@ sample_rect_solid_angle(const struct area_light *light, vec3 x, real u, real v, 
     return true;
 }
 
+/* The auto mode's rule (RECT_BY_SIZE): a rectangle looks large from x when
+ * its squared diagonal exceeds RECT_LARGE times the squared distance to its
+ * centre (about 50 degrees across at RECT_LARGE = 1).  Then r^2 /
+ * cos(theta') varies much over it and area sampling is noisy; a smaller one
+ * is sampled well enough by area, which costs a fraction of the solid-angle
+ * construction (its inverse trigonometric functions).  Measured: at 0.25
+ * the Cornell box's light is sampled by solid angle from half the box, for
+ * 1.5% less noise at 20% more time; at 1, only near the light. */
+#define RECT_LARGE ((real)1)
+
+/* Whether the shadow rays from x to the rectangle light go by its solid
+ * angle (true) or its area: --light-sampling, a function of x and the
+ * light only, so that light_pdf() makes the same choice. */
+static bool
+rect_by_solid_angle(const struct shadow_sampling *sampling, const struct area_light *light, vec3 x)
+{
+    if (sampling->rect != RECT_BY_SIZE) {
+        return sampling->rect == RECT_BY_SOLID_ANGLE;
+    }
+    real diagonal2 = vec3_length2(vec3_add(light->edge1, light->edge2));
+    return diagonal2 > RECT_LARGE * vec3_length2(vec3_sub(area_light_center(light), x));
+}
+
 /* A sphere light seen from x: 1 - cos(theta_max) of the cone it subtends,
  * sin(theta_max) = r / d at distance d from the centre, into
  * *one_minus_cos_max; false when x is on or inside it (its light goes
@@ -385,7 +408,7 @@ sum_light_samples(
         if (light->area) {
             vec3 y;
             real pdf = 0;
-            if (!sampling->solid_angle
+            if (!rect_by_solid_angle(sampling, light->area, h->p)
                 || !sample_rect_solid_angle(light->area, h->p, u, v, &y, &pdf)) {
                 fold_into_triangle(light->area, &u, &v);
                 y = sample_area_light(light->area, u, v);
@@ -688,7 +711,7 @@ light_pdf(
         return light_picker_pdf_solid_angle(picker, s, light, x, y);
     }
     struct spherical_rect sr;
-    if (sampling->solid_angle && spherical_rect_make(area, x, &sr)) {
+    if (rect_by_solid_angle(sampling, area, x) && spherical_rect_make(area, x, &sr)) {
         return 1 / sr.solid_angle;
     }
     /* By area: 1 / A per unit area, r^2 / (A cos(theta')) per steradian. */

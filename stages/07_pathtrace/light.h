@@ -16,10 +16,18 @@
  * light is behind the surface.  Occlusion is the caller's business. */
 vec3 point_irradiance(const struct hit *h, vec3 from, vec3 intensity);
 
+/* Where the shadow rays to a rectangle light go (ORDER: the
+ * --light-sampling choices). */
+enum rect_sampling {
+    RECT_BY_AREA, /* uniform over its area */
+    RECT_BY_SOLID_ANGLE, /* uniform in the solid angle it subtends (sample_rect_solid_angle()) */
+    RECT_BY_SIZE, /* by solid angle where it looks large (RECT_LARGE), else by area */
+};
+
 /* How area lights are sampled: `samples` shadow rays per light, or, when
  * adaptive[0] > 0, adaptive[0] probe rays and adaptive[1] more only where
- * the probes disagree (a penumbra).  solid_angle: rectangles by the solid
- * angle they subtend, not by area (sample_rect_solid_angle()).
+ * the probes disagree (a penumbra).  rect: how rectangles are sampled
+ * (enum rect_sampling).
  * bsdf_pdf_cos: for multiple importance sampling, the density per unit
  * solid angle with which the path's bounce at this point draws a direction
  * of cosine cos(theta) to the normal, divided by that cosine (P(diffuse
@@ -28,7 +36,7 @@ vec3 point_irradiance(const struct hit *h, vec3 from, vec3 intensity);
 struct shadow_sampling {
     int samples;
     int adaptive[2];
-    bool solid_angle;
+    int rect;
     real bsdf_pdf_cos;
 };
 

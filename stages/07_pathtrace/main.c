@@ -118,9 +118,10 @@ parse_command_line(
             .name = "light-sampling",
             .kind = OPT_CHOICE,
             .dest = light_sampling,
-            .choices = "area|solid-angle",
+            .choices = "area|solid-angle|auto",
             .arg = "HOW",
-            .help = "points on rectangle lights: uniform in area (default), solid-angle",
+            .help = "points on rectangle lights: uniform in area (default), in solid-angle, auto "
+                    "(solid angle where a light looks large)",
         },
         {
             .name = "no-rr",
@@ -263,7 +264,7 @@ main(int argc, char **argv)
     bool use_bvh = true;
     int brute_max = BRUTE_FORCE_MAX_PRIMS;
     int mis = 1; /* the index of "on" in off|on */
-    int light_sampling = 0; /* area */
+    int light_sampling = RECT_BY_AREA;
     struct run run;
     if (!parse_command_line(
             &run,
@@ -277,7 +278,7 @@ main(int argc, char **argv)
         return run.status;
     }
     renderer.mis = mis == 1;
-    renderer.shadow.solid_angle = light_sampling == 1;
+    renderer.shadow.rect = light_sampling;
     struct diag err;
     if (!choose_spp(&renderer, &run.opt, &err)) {
         return run_fail(&run, &err, EXIT_USAGE);

@@ -21,17 +21,19 @@
  *    light, u and v at 0 and next to 1; a parallelogram, a triangle) give
  *    no NaN: either a finite sample on the light with a finite density, or
  *    the refusal that makes the caller sample by area.
- *  - MIS adds up: at points under a large rectangle light (sampled by area
- *    and by solid angle) and under a sphere light, the mean of the
- *    MIS-weighted shadow ray plus the MIS-weighted cosine-distributed
- *    bounce that hits the light equals the irradiance in closed form
+ *  - MIS adds up: at points under a large rectangle light (sampled by
+ *    area, by solid angle, and by the auto mode's choice) and under a
+ *    sphere light, the mean of the MIS-weighted shadow ray plus the
+ *    MIS-weighted cosine-distributed bounce that hits the light equals the
+ *    irradiance in closed form
  *    (Lambert's polygon formula; pi L sin^2(theta_max) for the sphere):
  *    t-tests.  Weights that did not sum to 1 over the two techniques would
  *    make it too bright or too dark.
  *  - Black-box: on a box lit by a large one-sided ceiling light, with a
  *    diffuse-and-mirror (blend) sphere, --mis off, --light-sampling
- *    solid-angle and both together converge to the default's image (block
- *    t-tests, as in 07_estimators), with no NaN pixel.
+ *    solid-angle, both together, and --light-sampling auto converge to the
+ *    default's image (block t-tests, as in 07_estimators), with no NaN
+ *    pixel.
  * All statistical tests share alpha = 0.01, Sidak-corrected per group.
  */
 #include <stdlib.h>
@@ -194,7 +196,7 @@ TEST(rect_solid_angle_sampling_is_uniform_in_solid_angle)
             int ct = (int)fmin(fmax(floor(t * GRID), 0), GRID - 1);
             counts[ct * GRID + cs]++;
             vec3 ya = sample_area_light(&l, rng_uniform(&rng), rng_uniform(&rng));
-            struct shadow_sampling by_solid_angle = {.samples = 1, .solid_angle = true};
+            struct shadow_sampling by_solid_angle = {.samples = 1, .rect = RECT_BY_SOLID_ANGLE};
             struct scene s1 = {.area_lights = &l, .n_area_lights = 1};
             struct light_picker none = {0};
             real p = light_pdf(&s1, &by_solid_angle, &none, 0, x, ya);
@@ -300,7 +302,7 @@ TEST(rect_solid_angle_degenerate_cases_give_no_nan)
                     sampled += !r;
                 }
             }
-            struct shadow_sampling sa = {.samples = 1, .solid_angle = true};
+            struct shadow_sampling sa = {.samples = 1, .rect = RECT_BY_SOLID_ANGLE};
             struct scene s1 = {.area_lights = lights[li], .n_area_lights = 1};
             struct light_picker none = {0};
             real p = light_pdf(&s1, &sa, &none, 0, points[k], lights[li]->corner);
@@ -360,7 +362,7 @@ static void
 check_mis_sum(
     const char *what,
     const struct scene *s,
-    bool solid_angle,
+    int rect,
     vec3 p,
     double want,
     double n_tests)
@@ -369,12 +371,9 @@ check_mis_sum(
     struct light_picker lp;
     struct diag err;
     CHECK(light_picker_build(&lp, s, &err));
-    struct shadow_sampling sampling = {
-        .samples = 1,
-        .solid_angle = solid_angle,
-        .bsdf_pdf_cos = INV_PI};
+    struct shadow_sampling sampling = {.samples = 1, .rect = rect, .bsdf_pdf_cos = INV_PI};
     struct hit h = {.p = p, .n = {0, 1, 0}, .ng = {0, 1, 0}, .light = -1};
-    struct rng rng = rng_make(7403, (uint64_t)(p.x * 1000) + solid_angle);
+    struct rng rng = rng_make(7403, (uint64_t)(p.x * 1000) + (uint64_t)rect);
     struct stats st = {0};
     struct stattest_welford e = {0};
     for (int j = 0; j < 200000; j++) {
@@ -396,9 +395,12 @@ TEST(mis_weights_sum_to_one_over_both_techniques)
 {
     struct area_light l = rect_light();
     struct scene rect_scene = {.area_lights = &l, .n_area_lights = 1};
-    const vec3 points[2] = {{0, 0, 0}, {0.8, 1.7, 0.5}};
-    double n_tests = 2 * 2 + 1;
-    for (int k = 0; k < 2; k++) {
+    /* Under the light, close to it, and far below it (where the auto mode
+     * samples it by area). */
+    const vec3 points[3] = {{0, 0, 0}, {0.8, 1.7, 0.5}, {0.3, -4, 0.2}};
+    static const char *const modes[3] = {"area", "solid angle", "auto"};
+    double n_tests = 3 * 3 + 1;
+    for (int k = 0; k < 3; k++) {
         double c[4][3];
         for (int i = 0; i < 4; i++) {
             real s = (real)(i == 1 || i == 2);
@@ -409,10 +411,10 @@ TEST(mis_weights_sum_to_one_over_both_techniques)
         to_double(points[k], x);
         double up[3] = {0, 1, 0};
         double want = stagecheck_polygon_irradiance(c, 4, x, up, (double)l.radiance.y);
-        for (int sa = 0; sa < 2; sa++) {
+        for (int mode = RECT_BY_AREA; mode <= RECT_BY_SIZE; mode++) {
             char what[96];
-            snprintf(what, sizeof what, "rectangle, point %d, %s", k, sa ? "solid angle" : "area");
-            check_mis_sum(what, &rect_scene, sa, points[k], want, n_tests);
+            snprintf(what, sizeof what, "rectangle, point %d, %s", k, modes[mode]);
+            check_mis_sum(what, &rect_scene, mode, points[k], want, n_tests);
         }
     }
     /* A sphere light wholly above the horizon: E = pi L sin^2(theta_max). */
@@ -420,7 +422,7 @@ TEST(mis_weights_sum_to_one_over_both_techniques)
     struct scene sphere_scene = {.sphere_lights = &ball, .n_sphere_lights = 1};
     vec3 p = {0.2, 0, 0};
     double want = (double)PI * 2 * (0.36 / 1.44);
-    check_mis_sum("sphere light", &sphere_scene, false, p, want, n_tests);
+    check_mis_sum("sphere light", &sphere_scene, RECT_BY_AREA, p, want, n_tests);
 }
 
 /* --- black-box: the knobs change the noise, not the image ------------------ */
@@ -435,7 +437,7 @@ TEST(mis_weights_sum_to_one_over_both_techniques)
 #define BATCHES 8
 #endif
 #define BLOCK 16
-#define N_VARIANTS 3
+#define N_VARIANTS 4
 
 /* A closed box lit by a large one-sided light covering most of the
  * ceiling (where MIS and solid-angle sampling matter most), a blend
@@ -477,8 +479,11 @@ TEST(mis_and_solid_angle_keep_the_image)
         "--light-sampling",
         "solid-angle",
         NULL};
-    const char *const *variants[N_VARIANTS] = {mis_off, solid, both};
-    const char *names[N_VARIANTS] = {"--mis off", "--light-sampling solid-angle", "both"};
+    static const char *const by_size[] =
+        {"-W", SIZE, "-H", SIZE, "--spp", "16", "--light-sampling", "auto", NULL};
+    const char *const *variants[N_VARIANTS] = {mis_off, solid, both, by_size};
+    const char *names[N_VARIANTS] =
+        {"--mis off", "--light-sampling solid-angle", "both", "--light-sampling auto"};
     double n_tests = N_VARIANTS * 3.0 * (BLOCKS_PER_SIDE * BLOCKS_PER_SIDE + 1);
     uint64_t seed = pathcheck_seed(7400);
     struct pathcheck_batches base = {0};

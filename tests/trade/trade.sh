@@ -270,8 +270,8 @@ plan_supersample() { # 06: spp x AA pattern (x shadow samples on area lights)
     done
 }
 
-plan_pathtrace() { # 07: spp x NEE on/off x RR on/off; max depth
-    local st=$1 sc n nee rr d bvh=0
+plan_pathtrace() { # 07: spp x NEE on/off x RR on/off; the other levers; max depth
+    local st=$1 sc n nee rr d l bvh=0
     if has "$st" --no-bvh; then bvh=1; fi
     for sc in $SCENES; do
         for nee in on off; do
@@ -300,9 +300,11 @@ plan_pathtrace() { # 07: spp x NEE on/off x RR on/off; max depth
             done
         fi
         if has "$st" --light-sampling && area_scene "$sc"; then
-            for n in $PT_SPP $PT_SPP_MAIN_EXTRA; do
-                emit_seeds "$(pt_seeds "$n")" "$st" "$sc" "spp=$n nee=on rr=on light=solid-angle" \
-                    "nee=on rr=on light=solid-angle" "$n" 0
+            for l in solid-angle auto; do
+                for n in $PT_SPP $PT_SPP_MAIN_EXTRA; do
+                    emit_seeds "$(pt_seeds "$n")" "$st" "$sc" "spp=$n nee=on rr=on light=$l" \
+                        "nee=on rr=on light=$l" "$n" 0
+                done
             done
         fi
         if has "$st" --rr-depth; then
