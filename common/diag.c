@@ -17,6 +17,15 @@ diag_set(struct diag *d, const char *file, int line, int col, const char *fmt, .
     va_start(ap, fmt);
     vsnprintf(d->msg, sizeof d->msg, fmt, ap);
     va_end(ap);
+    d->kind = DIAG_INVALID;
+}
+
+void
+diag_mark_no_memory(struct diag *d)
+{
+    if (d) {
+        d->kind = DIAG_NO_MEMORY;
+    }
 }
 
 void

@@ -185,8 +185,11 @@ allocate_mesh(
     out->n_vertices = n_vertices;
     if (!out->positions || !out->indices || !out->triangle_material
         || (any_normals && !out->normals)) {
-        *why = format("out of memory for %zu vertices", n_vertices);
-        return false;
+        throw out_of_memory{format(
+            "out of memory: the system refused %llu MiB for %zu vertices and %zu triangles",
+            (unsigned long long)((bytes + (1 << 20) - 1) >> 20),
+            n_vertices,
+            n_triangles)};
     }
     return true;
 }

@@ -172,8 +172,7 @@ copy_materials(const tinygltf::Model &model, struct gltf_mesh *out, std::string 
     size_t n = model.materials.size();
     out->materials = (gltf_material *)calloc(n + 1, sizeof *out->materials);
     if (!out->materials) {
-        *why = format("out of memory for %zu materials", n);
-        return false;
+        throw out_of_memory{format("out of memory for %zu materials", n)};
     }
     out->n_materials = n;
     for (size_t i = 0; i < n; i++) {
@@ -274,8 +273,7 @@ copy_placed(
     out->cameras = (gltf_camera *)calloc(n + 1, sizeof *out->cameras);
     out->lights = (gltf_light *)calloc(n + 1, sizeof *out->lights);
     if (!out->cameras || !out->lights) {
-        *why = format("out of memory for %zu cameras and lights", n);
-        return false;
+        throw out_of_memory{format("out of memory for %zu cameras and lights", n)};
     }
     for (const placed &at : cameras_and_lights) {
         if (at.camera >= 0 && !copy_camera(model, at, &out->cameras[out->n_cameras++], why)) {

@@ -27,6 +27,19 @@
 // less than 10 levels deep.
 #define GLTF_MAX_JSON_DEPTH 128
 
+// What the JSON text becomes in memory once parsed, counted against the
+// memory limit before tinygltf sees it: nlohmann-json's document and
+// tinygltf's model (its "extras" copied into tinygltf::Value) are held at
+// once.  Peak RSS of a render loading 40 MB of one kind of value, over the
+// values counted (docs/robustness.md, "Bounded resources"): 200 bytes per
+// value for numbers, 242 for empty strings, 197 for objects of one member
+// (the member's ':' counted), 37 for empty arrays; and 3.4 bytes per byte
+// of text for a model whose buffer is a data: URI (the string, its copy,
+// the decoded buffer).  A value is counted at each ',', ':', '[' and '{'
+// outside strings.
+#define GLTF_JSON_BYTES_PER_VALUE 256
+#define GLTF_JSON_BYTES_PER_TEXT_BYTE 4
+
 /* --- loading the model ---------------------------------------------------- */
 
 // The 12-byte header: magic, version, and a length equal to the file's.
@@ -107,6 +120,7 @@ struct json_scan {
     bool in_buffers;  // inside that member's array
     bool has_uri;  // the buffer object being read has a "uri"
     size_t without_uri;  // buffer objects without one
+    uint64_t values;  // ',', ':', '[' and '{' outside strings: the values, about
 };
 
 static bool
@@ -149,9 +163,9 @@ scan_close(json_scan *s)
     s->depth--;
 }
 
-// Checks the nesting depth; counts the buffers without a uri.
+// Checks the nesting depth; counts the buffers without a uri and the values.
 static bool
-scan_json(const unsigned char *text, size_t len, size_t *without_uri, std::string *why)
+scan_json(const unsigned char *text, size_t len, json_scan *out, std::string *why)
 {
     json_scan s = {};
     s.text = text;
@@ -166,8 +180,12 @@ scan_json(const unsigned char *text, size_t len, size_t *without_uri, std::strin
             s.last_len = (end < len ? end : len) - s.last_start;
             i = end;
         } else if (c == ':') {
+            s.values++;
             scan_colon(&s);
+        } else if (c == ',') {
+            s.values++;
         } else if (c == '[' || c == '{') {
+            s.values++;
             scan_open(&s, c);
         } else if (c == ']' || c == '}') {
             scan_close(&s);
@@ -177,8 +195,28 @@ scan_json(const unsigned char *text, size_t len, size_t *without_uri, std::strin
             return false;
         }
     }
-    *without_uri = s.without_uri;
+    *out = s;
     return true;
+}
+
+// Refuse JSON whose parsed form would pass the memory limit (max_bytes: what
+// the scene has left), before it is parsed.
+static bool
+check_json_memory(const json_scan &s, size_t len, uint64_t max_bytes, std::string *why)
+{
+    uint64_t bytes =
+        s.values * GLTF_JSON_BYTES_PER_VALUE + (uint64_t)len * GLTF_JSON_BYTES_PER_TEXT_BYTE;
+    if (bytes <= max_bytes) {
+        return true;
+    }
+    *why = format(
+        "the JSON text (%zu bytes, about %llu values) would take about %llu MiB once parsed, "
+        "more than the memory limit of %llu MiB left for it; raise it with --max-memory",
+        len,
+        (unsigned long long)s.values,
+        (unsigned long long)((bytes + (1 << 20) - 1) >> 20),
+        (unsigned long long)(max_bytes >> 20));
+    return false;
 }
 
 static bool
@@ -223,9 +261,14 @@ tidy_message(const std::string &text)
 }
 
 // What tinygltf is not trusted with: a .glb's chunk layout, the JSON's
-// nesting, and buffers that would each copy the BIN chunk.
+// nesting and size once parsed, and buffers that would each copy the BIN
+// chunk.
 static bool
-check_before_parsing(const std::vector<unsigned char> &bytes, bool binary, std::string *why)
+check_before_parsing(
+    const std::vector<unsigned char> &bytes,
+    bool binary,
+    uint64_t max_bytes,
+    std::string *why)
 {
     if (binary && !check_glb_layout(bytes, why)) {
         return false;
@@ -233,13 +276,16 @@ check_before_parsing(const std::vector<unsigned char> &bytes, bool binary, std::
     const unsigned char *json =
         bytes.data() + (binary ? GLB_HEADER_BYTES + GLB_CHUNK_HEADER_BYTES : 0);
     size_t json_len = binary ? read_u32le(bytes.data() + GLB_HEADER_BYTES) : bytes.size();
-    size_t without_uri = 0;
-    if (!scan_json(json, json_len, &without_uri, why)) {
+    json_scan scan;
+    if (!scan_json(json, json_len, &scan, why)
+        || !check_json_memory(scan, json_len, max_bytes, why)) {
         return false;
     }
     // The specification lets only the first buffer use the BIN chunk.
-    if (binary && without_uri > 1) {
-        *why = format("%zu buffers have no uri: only the first may use the BIN chunk", without_uri);
+    if (binary && scan.without_uri > 1) {
+        *why = format(
+            "%zu buffers have no uri: only the first may use the BIN chunk",
+            scan.without_uri);
         return false;
     }
     return true;
@@ -277,7 +323,12 @@ run_tinygltf(
 }
 
 bool
-parse_model(const char *path, tinygltf::Model *model, fs_guard *guard, std::string *why)
+parse_model(
+    const char *path,
+    uint64_t max_bytes,
+    tinygltf::Model *model,
+    fs_guard *guard,
+    std::string *why)
 {
     std::vector<unsigned char> bytes;
     if (!read_file(path, GLTF_MAX_FILE_BYTES, &bytes, why)) {
@@ -288,7 +339,7 @@ parse_model(const char *path, tinygltf::Model *model, fs_guard *guard, std::stri
         return false;
     }
     bool binary = looks_binary(path, bytes);
-    if (!check_before_parsing(bytes, binary, why)) {
+    if (!check_before_parsing(bytes, binary, max_bytes, why)) {
         return false;
     }
     std::string dir = model_directory(path);

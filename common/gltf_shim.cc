@@ -24,7 +24,9 @@
  *   - images are never decoded (Duck.glb has a texture; we need none);
  *   - sizes and offsets are checked in size_t with overflow guards before
  *     anything is read, and totals before anything is allocated;
- *   - no exception leaves this file: gltf_load catches everything.
+ *   - no exception leaves this file: gltf_load catches everything, and an
+ *     allocation the system refuses (std::bad_alloc, out_of_memory) is
+ *     reported as such (DIAG_NO_MEMORY), not as an invalid file.
  * Symbolic links inside the model's directory are followed: the threat is a
  * hostile model file, not a hostile directory.
  *
@@ -64,11 +66,11 @@ load(const char *path, uint64_t max_bytes, struct gltf_mesh *out, std::string *w
     std::vector<job> jobs;
     std::vector<placed> cameras_and_lights;
     std::vector<part> parts;
-    return parse_model(path, &model, &guard, why) && check_required_extensions(model, why)
+    return parse_model(path, max_bytes, &model, &guard, why)
+           && check_required_extensions(model, why)
            && collect_jobs(model, &jobs, &cameras_and_lights, why)
-           && plan_parts(model, jobs, &parts, why)
-           && copy_parts(jobs, parts, max_bytes, out, why) && copy_materials(model, out, why)
-           && copy_placed(model, cameras_and_lights, out, why);
+           && plan_parts(model, jobs, &parts, why) && copy_parts(jobs, parts, max_bytes, out, why)
+           && copy_materials(model, out, why) && copy_placed(model, cameras_and_lights, out, why);
 }
 
 // Messages may quote the file's own strings: keep control bytes out of them.
@@ -110,8 +112,12 @@ gltf_load_limited(const char *path, uint64_t max_bytes, struct gltf_mesh *out, s
             return true;
         }
         diag_set(err, path, 0, 0, "%s", why.c_str());
+    } catch (const out_of_memory &e) {
+        diag_set(err, path, 0, 0, "%s", e.why.c_str());
+        diag_mark_no_memory(err);
     } catch (const std::bad_alloc &) {
-        diag_set(err, path, 0, 0, "out of memory");
+        diag_set(err, path, 0, 0, "out of memory: the system refused memory to the glTF parser");
+        diag_mark_no_memory(err);
     } catch (const std::exception &e) {
         diag_set(err, path, 0, 0, "unexpected error in the glTF loader: %s", e.what());
     } catch (...) {

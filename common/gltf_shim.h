@@ -4,7 +4,8 @@
  *
  * A load goes parse_model -> check_required_extensions -> collect_jobs ->
  * plan_parts -> copy_parts -> copy_materials -> copy_placed; each returns
- * false with *why set on failure.
+ * false with *why set on failure, or throws out_of_memory (below) when the
+ * system refuses an allocation.
  */
 #ifndef GLTF_SHIM_H
 #define GLTF_SHIM_H
@@ -68,6 +69,13 @@ struct placed {
 // printf into a std::string (messages are short: cut at 511 bytes).
 std::string format(const char *fmt, ...) DIAG_PRINTF(1, 2);
 
+// An allocation of ours the system refused (tinygltf's and the containers'
+// throw std::bad_alloc): gltf_load_limited catches both and marks the
+// diagnostic DIAG_NO_MEMORY, so that main() exits 4, not 1.
+struct out_of_memory {
+    std::string why;
+};
+
 static inline uint32_t
 read_u32le(const unsigned char *p)
 {
@@ -104,7 +112,12 @@ bool skip_image(
 /* --- the steps of a load -------------------------------------------------- */
 
 // gltf_parse.cc
-bool parse_model(const char *path, tinygltf::Model *model, fs_guard *guard, std::string *why);
+bool parse_model(
+    const char *path,
+    uint64_t max_bytes,
+    tinygltf::Model *model,
+    fs_guard *guard,
+    std::string *why);
 bool check_required_extensions(const tinygltf::Model &model, std::string *why);
 // gltf_nodes.cc: the mesh nodes, and the camera and light nodes
 bool collect_jobs(

@@ -221,7 +221,9 @@ run_load_scene(struct run *run, unsigned modelled)
     struct diag err;
     const struct scene_options load = {.camera = run->opt.camera, .max_bytes = memory_limit(run)};
     if (!scene_load_with(run->opt.scene_path, &load, &run->scene, &err)) {
-        return stop(run, &err, EXIT_INPUT);
+        /* Memory the system refused within --max-memory is no fault of the
+         * scene's. */
+        return stop(run, &err, err.kind == DIAG_NO_MEMORY ? EXIT_RESOURCES : EXIT_INPUT);
     }
     run->scene_loaded = true;
     if (!check_mesh_files(run)) {

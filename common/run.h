@@ -28,7 +28,7 @@ enum exit_status {
     EXIT_INPUT = 1, /* invalid scene or input file */
     EXIT_USAGE = 2, /* bad command line */
     EXIT_OUTPUT = 3, /* an output could not be written */
-    EXIT_RESOURCES = 4, /* memory or threads refused by the system while rendering */
+    EXIT_RESOURCES = 4, /* memory or threads refused by the system (loading or rendering) */
     EXIT_INTERRUPTED = 130, /* the shell's code for death by SIGINT */
 };
 

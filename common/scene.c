@@ -25,6 +25,7 @@
 #include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "scene_parser.h"
 
@@ -190,7 +191,9 @@ parse_scene(struct parser *p)
 
 /* --- Public --------------------------------------------------------------- */
 
-/* The whole file, up to MAX_FILE_BYTES, into *out (free it). */
+/* The whole file, up to MAX_FILE_BYTES, into *out (free it).  A regular
+ * file is refused by its size before any of it is read; a pipe or a device
+ * is read up to one byte past the cap. */
 static bool
 read_file(const char *path, char **out, size_t *len, struct diag *err)
 {
@@ -199,13 +202,34 @@ read_file(const char *path, char **out, size_t *len, struct diag *err)
         diag_set(err, path, 0, 0, "cannot open: %s", strerror(errno));
         return false;
     }
+    struct stat st;
+    if (fstat(fileno(f), &st) == 0 && S_ISREG(st.st_mode)
+        && (uint64_t)st.st_size > MAX_FILE_BYTES) {
+        diag_set(
+            err,
+            path,
+            0,
+            0,
+            "too large for a scene file (%llu MiB, over %d MiB)",
+            (unsigned long long)(st.st_size >> 20),
+            MAX_FILE_MIB);
+        fclose(f);
+        return false;
+    }
     size_t cap = (size_t)1 << 16;
     size_t n = 0;
     char *text = NULL;
     for (;;) {  // up to one byte past the cap, to see that the cap is passed
         char *grown = realloc(text, cap);
         if (!grown) {
-            diag_set(err, path, 0, 0, "out of memory");
+            diag_set(
+                err,
+                path,
+                0,
+                0,
+                "out of memory: the system refused %zu bytes for the text",
+                cap);
+            diag_mark_no_memory(err);
             goto fail;
         }
         text = grown;

@@ -62,7 +62,14 @@ grow(struct parser *p, const struct token *at, void *items, int need, int *cap, 
         grown = realloc(items, (size_t)new_cap * size);
     }
     if (!grown) {
-        fail(p, at, "out of memory");
+        fail(
+            p,
+            at,
+            "out of memory: the system refused %llu MiB for the scene's elements (within the "
+            "memory limit of %llu MiB)",
+            (unsigned long long)(((uint64_t)new_cap * size) >> 20),
+            (unsigned long long)(p->max_bytes >> 20));
+        diag_mark_no_memory(p->err);
         return NULL;
     }
     p->bytes = others + (uint64_t)new_cap * size;

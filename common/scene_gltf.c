@@ -379,6 +379,7 @@ map_file_materials(
     bool ok = surf && used && t;
     if (!ok) {
         fail(p, at, "out of memory for %zu materials", n);
+        diag_mark_no_memory(p->err);
     }
     for (size_t i = 0; ok && i < mesh->n_triangles; i++) {
         int m = mesh->triangle_material[i];

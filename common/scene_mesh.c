@@ -272,7 +272,11 @@ load_gltf_file(
      * scene's copy of them is counted again by grow(). */
     uint64_t left = p->max_bytes > p->bytes ? p->max_bytes - p->bytes : 0;
     if (!gltf_load_limited(path, left, out, &gerr)) {
-        return fail(p, t, "cannot load mesh '%s': %s", name, gerr.msg);
+        fail(p, t, "cannot load mesh '%s': %s", name, gerr.msg);
+        if (gerr.kind == DIAG_NO_MEMORY) {
+            diag_mark_no_memory(p->err);
+        }
+        return false;
     }
     return true;
 }
@@ -290,7 +294,9 @@ note_input_file(struct parser *p, const struct token *t, const char *path)
     }
     if (!grown || !copy) {
         free(copy);
-        return fail(p, t, "out of memory");
+        fail(p, t, "out of memory for the name of '%s'", path);
+        diag_mark_no_memory(p->err);
+        return false;
     }
     memcpy(copy, path, strlen(path) + 1);
     s->input_files[s->n_input_files++] = copy;

@@ -1517,12 +1517,16 @@ TEST(external_buffers_symlinks)
     check_refused(gltf_with_uri("up/secret.bin"), "symbolic link");
 }
 
-/* Ten nodes instancing a one-triangle mesh without normals need
- * 10 x (3 vertices x 3 doubles + 3 indices) = 840 bytes: refused under
- * that, loaded at it. */
-TEST(memory_limit)
+/* Ten nodes instancing a mesh of 1,000 triangles (3,000 vertices, no
+ * normals, not indexed) need 10 x (3,000 vertices x 3 doubles + 3,000
+ * indices) = 840,000 bytes: refused under that, loaded at it.  (The JSON's
+ * own estimate, a few tens of KB, is far below.) */
+#define SOUP_VERTICES 3000
+#define SOUP_BIN_BYTES (SOUP_VERTICES * 12)
+
+static const char *
+write_instanced_soup(const char *name)
 {
-    REQUIRE_GLTF();
     char json[4096];
     size_t len = (size_t)sprintf(
         json,
@@ -1531,24 +1535,52 @@ TEST(memory_limit)
     for (int i = 0; i < 10; i++) {
         len += (size_t)sprintf(json + len, "%s{\"mesh\":0}", i ? "," : "");
     }
-    strcat(
-        json,
+    sprintf(
+        json + len,
         "],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],"
-        "\"accessors\":[" TRI_POSITIONS "],\"bufferViews\":[" TRI_VIEW_POS "],"
-        "\"buffers\":[{\"byteLength\":36}]}");
-    unsigned char bin[36] = {0};
-    const char *path = test_tmp_path("instanced.glb");
+        "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":%d,"
+        "\"type\":\"VEC3\"}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":%d}],"
+        "\"buffers\":[{\"byteLength\":%d}]}",
+        SOUP_VERTICES,
+        SOUP_BIN_BYTES,
+        SOUP_BIN_BYTES);
+    static unsigned char bin[SOUP_BIN_BYTES];
+    const char *path = test_tmp_path(name);
     CHECK(write_glb(path, json, bin, sizeof bin));
-    uint64_t need = 10 * (3 * 3 * sizeof(double) + 3 * sizeof(unsigned));
+    return path;
+}
+
+TEST(memory_limit)
+{
+    REQUIRE_GLTF();
+    const char *path = write_instanced_soup("instanced.glb");
+    uint64_t need = 10 * SOUP_VERTICES * (3 * sizeof(double) + sizeof(unsigned));
     struct gltf_mesh m = {0};
     struct diag err = {0};
     CHECK(!gltf_load_limited(path, need - 1, &m, &err));
-    CHECK_MSG(strstr(err.msg, "30 vertices and 10 triangles") != NULL, "%s", err.msg);
+    CHECK_MSG(strstr(err.msg, "30000 vertices and 10000 triangles") != NULL, "%s", err.msg);
     CHECK_MSG(strstr(err.msg, "--max-memory") != NULL, "%s", err.msg);
     CHECK(m.positions == NULL && m.n_vertices == 0);
+    CHECK(err.kind == DIAG_INVALID);
     CHECK_MSG(gltf_load_limited(path, need, &m, &err), "%s", err.msg);
-    CHECK(m.n_triangles == 10);
+    CHECK(m.n_triangles == 10000);
     gltf_free(&m);
+}
+
+/* The JSON is refused before it is parsed when its estimate (256 bytes per
+ * value, counted at ',', ':', '[' and '{', and 4 per byte of text) passes
+ * the limit: the same file's 10 nodes and accessors under 16 KiB. */
+TEST(json_memory_limit)
+{
+    REQUIRE_GLTF();
+    const char *path = write_instanced_soup("instanced_json.glb");
+    struct gltf_mesh m = {0};
+    struct diag err = {0};
+    CHECK(!gltf_load_limited(path, 16 << 10, &m, &err));
+    CHECK_MSG(strstr(err.msg, "the JSON text (") != NULL, "%s", err.msg);
+    CHECK_MSG(strstr(err.msg, "once parsed") != NULL, "%s", err.msg);
+    CHECK_MSG(strstr(err.msg, "--max-memory") != NULL, "%s", err.msg);
+    CHECK(m.positions == NULL && m.n_vertices == 0);
 }
 
 TEST(data_uri)
@@ -1721,6 +1753,7 @@ TEST_MAIN(
     TEST_ENTRY(external_buffers_outside),
     TEST_ENTRY(external_buffers_symlinks),
     TEST_ENTRY(memory_limit),
+    TEST_ENTRY(json_memory_limit),
     TEST_ENTRY(data_uri),
     TEST_ENTRY(size_limit),
     TEST_ENTRY(mutation_fuzz))

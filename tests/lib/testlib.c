@@ -1,4 +1,5 @@
 /* testlib.c - see testlib.h. */
+#define _DEFAULT_SOURCE /* wait4: one child's resource usage */
 #include "testlib.h"
 
 #include "vec3.h"
@@ -10,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -259,6 +261,23 @@ exit_code(int status)
     return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
 }
 
+/* What a program wrote to capture, into output (truncated to cap); the file
+ * is removed. */
+static void
+read_capture(const char *capture, char *output, size_t cap)
+{
+    if (output && cap > 0) {
+        size_t len = 0;
+        char *text = test_read_file(capture, &len);
+        output[0] = '\0';
+        if (text) {
+            snprintf(output, cap, "%s", text);
+            free(text);
+        }
+    }
+    remove(capture);
+}
+
 /* The one process runner of the tests (test_spawn, test_wait): every test
  * that runs a program goes through here. */
 int
@@ -295,16 +314,16 @@ test_run_signalled(
     if (running) {
         status = test_wait(pid);
     }
-    if (output && cap > 0) {
-        size_t len = 0;
-        char *text = test_read_file(capture, &len);
-        output[0] = '\0';
-        if (text) {
-            snprintf(output, cap, "%s", text);
-            free(text);
-        }
-    }
-    remove(capture);
+    read_capture(capture, output, cap);
+    return status;
+}
+
+int
+test_run_peak(const char *const argv[], char *output, size_t cap, long *peak_kib)
+{
+    const char *capture = test_tmp_path("run-output.txt");
+    int status = test_wait_peak(test_spawn(argv, capture), peak_kib);
+    read_capture(capture, output, cap);
     return status;
 }
 
@@ -360,14 +379,27 @@ test_spawn(const char *const argv[], const char *capture)
 int
 test_wait(int pid)
 {
+    return test_wait_peak(pid, NULL);
+}
+
+int
+test_wait_peak(int pid, long *peak_kib)
+{
     int status = 0;
+    struct rusage usage = {.ru_maxrss = 0};
+    if (peak_kib) {
+        *peak_kib = -1;
+    }
     if (pid < 0) {
         return -1;
     }
-    while (waitpid((pid_t)pid, &status, 0) < 0) {
+    while (wait4((pid_t)pid, &status, 0, &usage) < 0) {
         if (errno != EINTR) {
             return -1;
         }
+    }
+    if (peak_kib) {
+        *peak_kib = usage.ru_maxrss; /* Linux: KiB */
     }
     return exit_code(status);
 }
@@ -469,6 +501,17 @@ test_render_float_binary(void)
 int
 test_render(const char *scene, const char *const args[], char *output, size_t cap)
 {
+    return test_render_peak(scene, args, output, cap, NULL);
+}
+
+int
+test_render_peak(
+    const char *scene,
+    const char *const args[],
+    char *output,
+    size_t cap,
+    long *peak_kib)
+{
     const char *argv[64];
     int n = 0;
     argv[n++] = test_render_binary();
@@ -482,7 +525,7 @@ test_render(const char *scene, const char *const args[], char *output, size_t ca
     }
     argv[n++] = scene;
     argv[n] = NULL;
-    return test_run(argv, output, cap);
+    return test_run_peak(argv, output, cap, peak_kib);
 }
 
 bool

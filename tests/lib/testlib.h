@@ -55,6 +55,10 @@ char *test_read_file(const char *path, size_t *len);
  * NUL-terminated) when output is not NULL. */
 int test_run(const char *const argv[], char *output, size_t cap);
 
+/* test_run, and the program's peak resident set size in KiB into *peak_kib
+ * (test_wait_peak; peak_kib may be NULL). */
+int test_run_peak(const char *const argv[], char *output, size_t cap, long *peak_kib);
+
 /* Start argv as test_run does, its stdout and stderr into the file
  * `capture`, without waiting: returns its process id (-1 on failure). */
 int test_spawn(const char *const argv[], const char *capture);
@@ -62,6 +66,10 @@ int test_spawn(const char *const argv[], const char *capture);
 /* Wait for a process test_spawn started: its exit status, 128 + signal
  * when killed, -1 on failure. */
 int test_wait(int pid);
+
+/* test_wait, and the process's peak resident set size in KiB (its own, from
+ * wait4) into *peak_kib (-1 on failure; peak_kib may be NULL). */
+int test_wait_peak(int pid, long *peak_kib);
 
 /* test_run, but sends signal signo to the program `delay` seconds after it
  * started if it is still running then (*was_running says whether it was;
@@ -96,6 +104,14 @@ const char *test_render_float_binary(void);
 /* Run the stage's binary: render -q [args...] scene.  args is
  * NULL-terminated and may be NULL. */
 int test_render(const char *scene, const char *const args[], char *output, size_t cap);
+
+/* test_render, and its peak resident set size in KiB (test_run_peak). */
+int test_render_peak(
+    const char *scene,
+    const char *const args[],
+    char *output,
+    size_t cap,
+    long *peak_kib);
 
 /* Render scene to a PFM in the temp dir and read it back; false (with the
  * binary's output printed) when the run or the read fails. */
