@@ -129,6 +129,8 @@ def main():
         ("output_is_scene", "5", ["-o", "b.png", "b.png"]),
         ("no_directory", "6", ["-o", "missing/x.png", "a.scene"]),
         ("unknown_format", "3", ["-o", "x.txt", "a.scene"]),
+        ("aov", "7", ["--aov", "depth,normal,id", "--mis", "off", "--light-sampling",
+                      "solid-angle", "-o", "x.pfm", "a.scene"]),
         ("help", "7", ["--help"]),
         ("version", "1", ["--version"]),
     ]:
