@@ -31,6 +31,9 @@ enum shared_id {
     ID_CAMERA,
     ID_MAX_MEMORY,
     ID_AOV,
+    ID_PIXEL,
+    ID_TRACE,
+    ID_TRACE_SVG,
     ID_HELP,
     ID_VERSION,
 };
@@ -68,6 +71,17 @@ static const struct shared_option shared_options[] = {
      "aov",
      "LIST",
      "also write render passes: depth,normal,albedo,id,material,feature (docs/aov.md)"},
+    {ID_PIXEL,
+     0,
+     "pixel",
+     "X,Y",
+     "render only this pixel (0,0 top left), as in the full render, and trace it"},
+    {ID_TRACE,
+     0,
+     "trace",
+     "FILE",
+     "with --pixel: its every ray, as text (- for standard output) or .json"},
+    {ID_TRACE_SVG, 0, "trace-svg", "FILE", "with --pixel: its paths drawn over the image (SVG)"},
     {ID_HELP, 0, "help", NULL, "print this help"},
     {ID_VERSION, 0, "version", NULL, "print the version"},
 };
@@ -251,6 +265,15 @@ apply_shared(
     struct options *opt,
     struct diag *err)
 {
+    /* The image's size is known once the scene is loaded: run.c checks
+     * that the pixel is in it. */
+    const struct option_spec pixel_spec = {
+        .name = "pixel",
+        .dest = opt->pixel,
+        .min = 0,
+        .max = SCENE_MAX_IMAGE_DIM - 1,
+        .arg = "X,Y",
+    };
     long long seed;
     const long long max_seed = 0x7fffffffffffffffLL;
     switch (id) {
@@ -287,6 +310,15 @@ apply_shared(
         return parse_int_in(name, value, 1, 1 << 30, &opt->max_memory_mib, err);
     case ID_AOV:
         return aov_parse_list(value, &opt->aov, err);
+    case ID_PIXEL:
+        opt->has_pixel = true;
+        return parse_pair(&pixel_spec, value, err);
+    case ID_TRACE:
+        opt->trace_path = value;
+        return true;
+    case ID_TRACE_SVG:
+        opt->trace_svg_path = value;
+        return true;
     case ID_HELP:
     case ID_VERSION:
         return true;
@@ -391,6 +423,36 @@ parse_option(
     return apply_extra(spec, value, err) ? CLI_OK : CLI_ERROR;
 }
 
+/* --trace and --trace-svg trace the pixel --pixel names; --pixel alone
+ * prints its trace on standard output. */
+static bool
+check_trace_options(struct options *opt, struct diag *err)
+{
+    const char *needs = opt->trace_path ? "--trace" : opt->trace_svg_path ? "--trace-svg" : NULL;
+    if (needs && !opt->has_pixel) {
+        diag_set(err, NULL, 0, 0, "%s needs --pixel X,Y: the pixel to trace", needs);
+        return false;
+    }
+    if (opt->has_pixel && !opt->trace_path && !opt->trace_svg_path) {
+        opt->trace_path = "-";
+    }
+    const char *streams[] = {opt->stats_path, opt->trace_path, opt->trace_svg_path};
+    int to_stdout = 0;
+    for (int i = 0; i < 3; i++) {
+        to_stdout += streams[i] && strcmp(streams[i], "-") == 0;
+    }
+    if (to_stdout > 1) {
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "--stats, --trace and --trace-svg: only one of them can be - (standard output)");
+        return false;
+    }
+    return true;
+}
+
 enum cli_result
 cli_parse(
     int argc,
@@ -440,7 +502,7 @@ cli_parse(
         diag_set(err, NULL, 0, 0, "no scene given (usage: render [options] SCENE; see --help)");
         return CLI_ERROR;
     }
-    return CLI_OK;
+    return check_trace_options(opt, err) ? CLI_OK : CLI_ERROR;
 }
 
 int

@@ -27,6 +27,10 @@ struct options {
     int max_memory_mib; /* --max-memory: refuse a render estimated to need more (MiB);
                            default SCENE_DEFAULT_MAX_BYTES */
     unsigned aov; /* --aov: the render passes to write, bit 1u << enum aov_pass (aov.h) */
+    bool has_pixel; /* --pixel X,Y: render and trace only that pixel */
+    int pixel[2];
+    const char *trace_path; /* --trace: "-" standard output; .json JSON; else text */
+    const char *trace_svg_path; /* --trace-svg */
 };
 
 enum option_kind {

@@ -16,6 +16,8 @@
 #include <stdlib.h>
 #include <time.h>
 
+#include "trace.h"
+
 #define TILE_SIZE 16
 
 static volatile sig_atomic_t stop_requested;
@@ -79,6 +81,16 @@ draw_progress(struct pass_state *ps, bool final)
     fflush(stderr);
 }
 
+/* Pixel (x, y)'s estimate in this pass, from its own random stream. */
+static vec3
+pixel_estimate(const struct render_job *job, int x, int y, int pass, struct stats *st)
+{
+    uint64_t index = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
+    struct rng rng = rng_for_pixel(job->seed, index, (uint64_t)pass);
+    return job->pass_pixel ? job->pass_pixel(job->ctx, x, y, pass, &rng, st)
+                           : job->pixel(job->ctx, x, y, &rng, st);
+}
+
 static void
 render_tile(struct pass_state *ps, int tile, struct stats *st)
 {
@@ -89,11 +101,8 @@ render_tile(struct pass_state *ps, int tile, struct stats *st)
     int y1 = y0 + TILE_SIZE < job->height ? y0 + TILE_SIZE : job->height;
     for (int y = y0; y < y1; y++) {
         for (int x = x0; x < x1; x++) {
-            uint64_t index = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
-            struct rng rng = rng_for_pixel(job->seed, index, (uint64_t)ps->pass);
-            ps->values[index] = job->pass_pixel
-                                    ? job->pass_pixel(job->ctx, x, y, ps->pass, &rng, st)
-                                    : job->pixel(job->ctx, x, y, &rng, st);
+            size_t index = (size_t)y * (size_t)job->width + (size_t)x;
+            ps->values[index] = pixel_estimate(job, x, y, ps->pass, st);
         }
     }
 }
@@ -146,19 +155,36 @@ run_pass(struct pass_state *ps, struct worker *workers, int n_threads, bool *thr
     return !*thread_error && atomic_load(&ps->tiles_done) == ps->n_tiles;
 }
 
-/* Add a finished pass to the sum; a non-finite estimate counts its pixel
- * once in nan_pixels and contributes 0 (the guard). */
+/* Add one pass's estimate of a pixel to its sum; a non-finite estimate
+ * flags the pixel (counted once in nan_pixels) and contributes 0 (the
+ * guard). */
+static void
+accumulate(vec3 v, vec3 *sum, unsigned char *bad)
+{
+    if (!vec3_is_finite(v)) {
+        *bad = 1;
+        v = vec3_splat(0);
+    }
+    *sum = vec3_add(*sum, v);
+}
+
 static void
 accumulate_pass(const vec3 *values, size_t n, vec3 *sum, unsigned char *bad)
 {
     for (size_t i = 0; i < n; i++) {
-        vec3 v = values[i];
-        if (!vec3_is_finite(v)) {
-            bad[i] = 1;
-            v = vec3_splat(0);
-        }
-        sum[i] = vec3_add(sum[i], v);
+        accumulate(values[i], &sum[i], &bad[i]);
     }
+}
+
+/* The pixel as the image stores it: the mean of its passes, in float. */
+static void
+store_mean(vec3 sum, int passes, float *rgb)
+{
+    real scale = passes > 0 ? 1 / (real)passes : 0;
+    vec3 mean = vec3_scale(sum, scale);
+    rgb[0] = (float)mean.x;
+    rgb[1] = (float)mean.y;
+    rgb[2] = (float)mean.z;
 }
 
 static void
@@ -170,12 +196,8 @@ write_mean(
     struct render_result *result)
 {
     size_t n = (size_t)out->width * (size_t)out->height;
-    real scale = passes > 0 ? 1 / (real)passes : 0;
     for (size_t i = 0; i < n; i++) {
-        vec3 mean = vec3_scale(sum[i], scale);
-        out->rgb[3 * i + 0] = (float)mean.x;
-        out->rgb[3 * i + 1] = (float)mean.y;
-        out->rgb[3 * i + 2] = (float)mean.z;
+        store_mean(sum[i], passes, &out->rgb[3 * i]);
         result->nan_pixels += bad[i];
     }
 }
@@ -250,4 +272,35 @@ render_image(
     free(bad);
     free(workers);
     return ok;
+}
+
+void
+render_pixel_traced(
+    const struct render_job *job,
+    int px,
+    int py,
+    struct trace *trace,
+    float rgb[3],
+    struct render_result *result)
+{
+    *result = (struct render_result){0};
+    double start = clock_seconds();
+    clock_t cpu_start = clock();
+    vec3 sum = vec3_splat(0);
+    unsigned char bad = 0;
+    struct stats st = {.trace = trace};
+    for (int pass = 0; pass < job->passes; pass++) {
+        trace_pass_begin(trace, pass);
+        vec3 v = pixel_estimate(job, px, py, pass, &st);
+        trace_pass_end(trace, v);
+        accumulate(v, &sum, &bad);
+        result->passes_done++;
+    }
+    store_mean(sum, result->passes_done, rgb);
+    trace_set_value(trace, rgb);
+    st.trace = NULL;
+    result->counts = st;
+    result->nan_pixels = bad;
+    result->seconds = clock_seconds() - start;
+    result->cpu_seconds = (double)(clock() - cpu_start) / CLOCKS_PER_SEC;
 }

@@ -65,6 +65,20 @@ bool render_image(
     struct render_result *result,
     struct diag *err);
 
+struct trace;
+
+/* Render only pixel (px, py), pass after pass, with the random streams it
+ * has in render_image, recording its rays into trace (trace.h); rgb gets
+ * its value as render_image stores it, bit for bit.  The time limit is not
+ * applied: every pass of the job is rendered. */
+void render_pixel_traced(
+    const struct render_job *job,
+    int px,
+    int py,
+    struct trace *trace,
+    float rgb[3],
+    struct render_result *result);
+
 /* Ask a running render_image to stop after the tiles in flight; safe to
  * call from a signal handler. */
 void render_request_stop(void);

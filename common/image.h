@@ -17,6 +17,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 #include "diag.h"
 
@@ -82,5 +83,13 @@ uint8_t srgb_encode8(float linear);
  * adler at 1; each call continues the running value. */
 uint32_t png_crc32(uint32_t crc, const uint8_t *data, size_t n);
 uint32_t png_adler32(uint32_t adler, const uint8_t *data, size_t n);
+
+/* The image as an 8-bit sRGB PNG in memory (malloc'd; *len bytes), for a
+ * page that embeds it; NULL (err says why) when memory runs out. */
+unsigned char *image_png_bytes(const struct image *img, size_t *len, struct diag *err);
+
+/* data as base64 (RFC 4648, section 4) into f: the body of a
+ * "data:image/png;base64," URI (RFC 2397). */
+void write_base64(FILE *f, const unsigned char *data, size_t n);
 
 #endif /* IMAGE_H */

@@ -147,3 +147,37 @@ write_png(struct sink *s, const struct image *img)
     free(raw);
     free(z.data);
 }
+
+unsigned char *
+image_png_bytes(const struct image *img, size_t *len, struct diag *err)
+{
+    char *buf = NULL;
+    size_t n = 0;
+    FILE *mem = open_memstream(&buf, &n);
+    struct sink sink = {.f = mem};
+    if (mem) {
+        write_png(&sink, img);
+    }
+    if (!mem || fclose(mem) != 0 || sink.error != 0) {
+        free(buf);
+        diag_set(err, NULL, 0, 0, "out of memory for a %dx%d PNG", img->width, img->height);
+        return NULL;
+    }
+    *len = n;
+    return (unsigned char *)buf;
+}
+
+void
+write_base64(FILE *f, const unsigned char *data, size_t n)
+{
+    static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (size_t i = 0; i < n; i += 3) {
+        uint32_t v = (uint32_t)data[i] << 16;
+        v |= i + 1 < n ? (uint32_t)data[i + 1] << 8 : 0;
+        v |= i + 2 < n ? data[i + 2] : 0;
+        fputc(digits[v >> 18 & 63], f);
+        fputc(digits[v >> 12 & 63], f);
+        fputc(i + 1 < n ? digits[v >> 6 & 63] : '=', f);
+        fputc(i + 2 < n ? digits[v & 63] : '=', f);
+    }
+}

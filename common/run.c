@@ -13,6 +13,7 @@
 #include "feature_table.h"
 #include "image.h"
 #include "signals.h"
+#include "trace.h"
 
 /* The name that makes an output go to standard output (--stats -). */
 #define STDOUT_NAME "-"
@@ -54,16 +55,33 @@ check_output(const char *path, struct diag *err)
     return true;
 }
 
+/* Whether the run writes the image: always, but with --pixel only when -o
+ * asks for it. */
+static bool
+writes_image(const struct run *run)
+{
+    return !run->opt.has_pixel || run->opt.output;
+}
+
+static void
+add_output(struct run *run, const char *what, const char *path)
+{
+    if (path && strcmp(path, STDOUT_NAME) != 0) {
+        run->outputs[run->n_outputs++] = (struct named_file){what, path};
+    }
+}
+
 /* Every file the run will write (an output option added later adds its
  * line here).  "-" is standard output, which is no file. */
 static bool
 collect_outputs(struct run *run, struct diag *err)
 {
-    run->outputs[run->n_outputs++] = (struct named_file){"-o", run->output};
-    const char *stats = run->opt.stats_path;
-    if (stats && strcmp(stats, STDOUT_NAME) != 0) {
-        run->outputs[run->n_outputs++] = (struct named_file){"--stats", stats};
+    if (writes_image(run)) {
+        run->outputs[run->n_outputs++] = (struct named_file){"-o", run->output};
     }
+    add_output(run, "--stats", run->opt.stats_path);
+    add_output(run, "--trace", run->opt.trace_path);
+    add_output(run, "--trace-svg", run->opt.trace_svg_path);
     for (int pass = 0; pass < AOV_COUNT; pass++) {
         if (!(run->opt.aov & (1u << pass))) {
             continue;
@@ -107,7 +125,7 @@ run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage)
         break;
     }
     run->output = cli_output_path(&run->opt, run->default_output, sizeof run->default_output);
-    if (!check_output(run->output, &err)) {
+    if (writes_image(run) && !check_output(run->output, &err)) {
         return stop(run, &err, EXIT_USAGE);
     }
     if (!collect_outputs(run, &err)) {
@@ -348,7 +366,8 @@ publish_all(struct atomic_file *files, int n)
     return status;
 }
 
-/* Which image output i is: the render, a pass, or none (the statistics). */
+/* Which image output i is: the render, a pass, or none (the statistics,
+ * a trace). */
 static const struct image *
 output_image(const struct run *run, int i, const struct image *image, const struct image *passes)
 {
@@ -364,11 +383,71 @@ output_image(const struct run *run, int i, const struct image *image, const stru
     return NULL;
 }
 
-/* Write the image, the statistics and the passes, all or none; returns
- * the exit status.  "--stats -" goes to standard output once the files
- * are in place. */
+/* Whether a trace file is asked for as JSON (by its extension). */
+static bool
+is_json(const char *path)
+{
+    size_t len = strlen(path);
+    return len >= 5 && strcmp(path + len - 5, ".json") == 0;
+}
+
+/* Write output `path`, one of the run's that is not an image, to the open
+ * stream f. */
+static bool
+write_one(
+    struct run *run,
+    const char *path,
+    FILE *f,
+    const struct image *image,
+    const struct trace *trace,
+    struct diag *err)
+{
+    if (path == run->opt.trace_svg_path) {
+        return trace_write_svg(f, trace, image, err);
+    }
+    if (path == run->opt.trace_path && is_json(path)) {
+        trace_write_json(f, trace);
+    } else if (path == run->opt.trace_path) {
+        trace_write_text(f, trace);
+    } else {
+        report_write_json_to(f, &run->rep);
+    }
+    return true;
+}
+
+/* The outputs that go to standard output ("-"), once the files are in
+ * place. */
 static int
-write_outputs(struct run *run, const struct image *image, const struct image *passes)
+write_stdout(struct run *run, const struct image *image, const struct trace *trace)
+{
+    const char *streams[] = {run->opt.stats_path, run->opt.trace_path, run->opt.trace_svg_path};
+    for (int i = 0; i < 3; i++) {
+        if (!streams[i] || strcmp(streams[i], STDOUT_NAME) != 0) {
+            continue;
+        }
+        struct diag err;
+        if (!write_one(run, streams[i], stdout, image, trace, &err)) {
+            diag_print(stderr, &err, "error");
+            return EXIT_OUTPUT;
+        }
+        if (fflush(stdout) != 0 || ferror(stdout)) {
+            fprintf(stderr, "error: standard output: cannot write to it\n");
+            return EXIT_OUTPUT;
+        }
+    }
+    return EXIT_OK;
+}
+
+/* Write the image, the statistics, the passes and the trace, all or none;
+ * returns the exit status.  An output named "-" goes to standard output
+ * once the files are in place.  image is NULL when --pixel renders no
+ * image, trace NULL without --pixel. */
+static int
+write_outputs(
+    struct run *run,
+    const struct image *image,
+    const struct image *passes,
+    const struct trace *trace)
 {
     run->rep.peak_rss_bytes = peak_rss_bytes();
     run->rep.seconds_total = clock_seconds() - run->start;
@@ -382,12 +461,10 @@ write_outputs(struct run *run, const struct image *image, const struct image *pa
         }
         n++;
         const struct image *img = output_image(run, i, image, passes);
-        if (img) {
-            if (!image_write_to(img, &files[n - 1], &err)) {
-                return abandon(files, n, &err);
-            }
-        } else {
-            report_write_json_to(files[n - 1].f, &run->rep);
+        bool written = img ? image_write_to(img, &files[n - 1], &err)
+                           : write_one(run, path, files[n - 1].f, image, trace, &err);
+        if (!written) {
+            return abandon(files, n, &err);
         }
         if (!atomic_file_finish(&files[n - 1], &err)) {
             return abandon(files, n - 1, &err);
@@ -400,15 +477,104 @@ write_outputs(struct run *run, const struct image *image, const struct image *pa
     if (!run->opt.quiet) {
         report_print(stderr, &run->rep);
     }
-    const char *stats = run->opt.stats_path;
-    if (stats && strcmp(stats, STDOUT_NAME) == 0) {
-        report_write_json_to(stdout, &run->rep);
-        if (fflush(stdout) != 0 || ferror(stdout)) {
-            fprintf(stderr, "error: --stats -: cannot write to standard output\n");
-            return EXIT_OUTPUT;
-        }
+    return write_stdout(run, image, trace);
+}
+
+/* Render the whole image; EXIT_OK, or the status of a render that failed
+ * or was interrupted before its first pass (then nothing is left). */
+static int
+render_full(const struct render_job *job, struct image *image, struct render_result *result)
+{
+    struct diag err;
+    if (!render_image(job, image, result, &err)) {
+        diag_print(stderr, &err, "error");
+        return EXIT_RESOURCES;
+    }
+    if (result->passes_done == 0) {
+        fprintf(stderr, "interrupted before the image was complete; nothing written\n");
+        image_free(image);
+        return EXIT_INTERRUPTED;
+    }
+    if (result->interrupted) {
+        fprintf(
+            stderr,
+            "interrupted: writing the image after %d complete passes\n",
+            result->passes_done);
     }
     return EXIT_OK;
+}
+
+/* --pixel names a pixel of the image: else a usage error giving the range. */
+static bool
+check_pixel(const struct run *run, const struct render_job *job, struct diag *err)
+{
+    int x = run->opt.pixel[0];
+    int y = run->opt.pixel[1];
+    if (x < job->width && y < job->height) {
+        return true;
+    }
+    diag_set(
+        err,
+        NULL,
+        0,
+        0,
+        "--pixel %d,%d is outside the %dx%d image: X in [0, %d], Y in [0, %d]",
+        x,
+        y,
+        job->width,
+        job->height,
+        job->width - 1,
+        job->height - 1);
+    return false;
+}
+
+/* --pixel: render that pixel alone, recording its rays; the whole image
+ * too when it is written (-o) or drawn under the paths (--trace-svg),
+ * which then checks the pixel's value against it. */
+static int
+render_traced(
+    struct run *run,
+    const struct render_job *job,
+    int spp_per_pass,
+    const struct image *passes)
+{
+    struct diag err;
+    if (!check_pixel(run, job, &err)) {
+        diag_print(stderr, &err, "error");
+        return EXIT_USAGE;
+    }
+    if (job->time_limit > 0) {
+        fprintf(
+            stderr,
+            "error: --pixel replays a fixed number of samples: give --spp, not --time\n");
+        return EXIT_USAGE;
+    }
+    int px = run->opt.pixel[0];
+    int py = run->opt.pixel[1];
+    struct trace *trace = trace_new(&run->scene, px, py);
+    if (!trace) {
+        fprintf(stderr, "error: out of memory for the trace\n");
+        return EXIT_RESOURCES;
+    }
+    float rgb[3];
+    struct render_result result;
+    render_pixel_traced(job, px, py, trace, rgb, &result);
+    struct image image = {0};
+    bool full = run->opt.trace_svg_path || run->opt.output;
+    int status = EXIT_OK;
+    if (full) {
+        status = render_full(job, &image, &result);
+    }
+    if (status == EXIT_OK && full && memcmp(image_pixel(&image, px, py), rgb, sizeof rgb) != 0) {
+        fprintf(stderr, "warning: the traced pixel's value differs from the full render's\n");
+    }
+    if (status == EXIT_OK) {
+        fill_report(run, job, &result, spp_per_pass);
+        status = write_outputs(run, full ? &image : NULL, passes, trace);
+    }
+    image_free(&image);
+    trace_free(trace);
+    return status;
 }
 
 /* The --aov passes (none asked for: nothing to do, nothing spent). */
@@ -453,30 +619,21 @@ run_render(struct run *run, const struct render_job *job, int spp_per_pass)
      * its image, and then every output. */
     struct image passes[AOV_COUNT] = {{0}};
     int status = render_passes(run, job, passes);
-    struct image image = {0};
-    struct render_result result;
-    if (status == EXIT_OK && !render_image(job, &image, &result, &err)) {
-        diag_print(stderr, &err, "error");
-        status = EXIT_RESOURCES;
-    }
-    if (status == EXIT_OK && result.passes_done == 0) {
-        fprintf(stderr, "interrupted before the image was complete; nothing written\n");
-        status = EXIT_INTERRUPTED;
-    }
-    if (status == EXIT_OK && result.interrupted) {
-        fprintf(
-            stderr,
-            "interrupted: writing the image after %d complete passes\n",
-            result.passes_done);
-    }
-    if (status == EXIT_OK) {
-        fill_report(run, job, &result, spp_per_pass);
-        status = write_outputs(run, &image, passes);
+    if (status == EXIT_OK && run->opt.has_pixel) {
+        status = render_traced(run, job, spp_per_pass, passes);
+    } else if (status == EXIT_OK) {
+        struct image image = {0};
+        struct render_result result;
+        status = render_full(job, &image, &result);
+        if (status == EXIT_OK) {
+            fill_report(run, job, &result, spp_per_pass);
+            status = write_outputs(run, &image, passes, NULL);
+        }
+        image_free(&image);
     }
     for (int pass = 0; pass < AOV_COUNT; pass++) {
         image_free(&passes[pass]);
     }
-    image_free(&image);
     return status;
 }
 

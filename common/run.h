@@ -32,8 +32,9 @@ enum exit_status {
     EXIT_INTERRUPTED = 130, /* the shell's code for death by SIGINT */
 };
 
-/* The most files a run writes (-o, --stats and one per --aov pass). */
-#define RUN_MAX_OUTPUTS (4 + AOV_COUNT)
+/* The most files a run writes (-o, --stats, --trace, --trace-svg and one
+ * per --aov pass). */
+#define RUN_MAX_OUTPUTS (6 + AOV_COUNT)
 
 /* One run of `render`, from the command line to the written outputs. */
 struct run {

@@ -61,6 +61,7 @@ struct sphere {
     vec3 center;
     real radius;
     int material;
+    int line; /* of its statement in the scene file (0: none), for --trace */
 };
 
 /* A parallelogram: corner + s*edge1 + t*edge2 for s, t in [0, 1].
@@ -68,6 +69,7 @@ struct sphere {
 struct quad {
     vec3 corner, edge1, edge2;
     int material;
+    int line; /* of its statement in the scene file (0: none), for --trace */
 };
 
 /* A triangle indexes the scene's shared vertex arrays.  When smooth is true
@@ -77,11 +79,13 @@ struct triangle {
     int v[3];
     int material;
     bool smooth;
+    int line; /* of its `triangle` or `mesh` statement (0: a glTF scene), for --trace */
 };
 
 struct point_light {
     vec3 position;
     vec3 intensity; /* W/sr per channel */
+    struct src_loc loc;
 };
 
 /* A surface emitting radiance L from the side its normal

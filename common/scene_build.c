@@ -164,8 +164,11 @@ build_sphere(struct parser *p, const struct token *kw, struct fields *fs)
     }
     s->spheres = a;
     real radius = get(fs, "radius")->num[0];
-    a[s->n_spheres++] =
-        (struct sphere){.center = vec_of(fs, "center"), .radius = radius, .material = material};
+    a[s->n_spheres++] = (struct sphere){
+        .center = vec_of(fs, "center"),
+        .radius = radius,
+        .material = material,
+        .line = kw->line};
     return true;
 }
 
@@ -184,7 +187,7 @@ build_quad(struct parser *p, const struct token *kw, struct fields *fs)
     }
     s->quads = a;
     struct quad *q = &a[s->n_quads++];
-    *q = (struct quad){.corner = vec_of(fs, "corner"), .material = material};
+    *q = (struct quad){.corner = vec_of(fs, "corner"), .material = material, .line = kw->line};
     q->edge1 = vec_of(fs, "edge1");
     q->edge2 = vec_of(fs, "edge2");
     return true;
@@ -227,7 +230,7 @@ build_triangle(struct parser *p, const struct token *kw, struct fields *fs)
         return false;
     }
     static const char *const corners[] = {"v0", "v1", "v2"};
-    struct triangle tri = {.material = material, .smooth = false};
+    struct triangle tri = {.material = material, .smooth = false, .line = kw->line};
     for (int i = 0; i < 3; i++) {
         tri.v[i] = s->n_vertices;
         s->positions[s->n_vertices] = vec_of(fs, corners[i]);
@@ -257,7 +260,8 @@ build_point_light(struct parser *p, const struct token *kw, struct fields *fs)
 {
     struct point_light light = {
         .position = vec_of(fs, "position"),
-        .intensity = vec_of(fs, "intensity")};
+        .intensity = vec_of(fs, "intensity"),
+        .loc = loc_of(kw)};
     return add_point_light(p, kw, light);
 }
 

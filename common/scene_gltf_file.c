@@ -127,7 +127,10 @@ add_lights(struct parser *p, const struct token *at, const char *file, const str
         }
         first_ranged = l->range > 0 && ranged++ == 0 ? l : first_ranged;
         vec3 intensity = vec3_scale(vec_from(l->color), (real)(l->intensity / LUMENS_PER_WATT));
-        if (!add_point_light(p, at, (struct point_light){vec_from(l->position), intensity})) {
+        if (!add_point_light(
+                p,
+                at,
+                (struct point_light){.position = vec_from(l->position), .intensity = intensity})) {
             return false;
         }
     }
@@ -180,7 +183,10 @@ add_headlight(struct parser *p, const struct token *at, const char *file)
         "lights to the file to light it yourself)",
         file,
         (double)intensity);
-    return add_point_light(p, at, (struct point_light){s->camera.origin, vec3_splat(intensity)});
+    return add_point_light(
+        p,
+        at,
+        (struct point_light){.position = s->camera.origin, .intensity = vec3_splat(intensity)});
 }
 
 bool

@@ -160,6 +160,7 @@ append_mesh(
         struct triangle tri = {
             .material = surface ? surface->material : material,
             .smooth = mesh->normals != NULL,
+            .line = at->line,
         };
         for (int k = 0; k < 3; k++) {
             unsigned index = mesh->indices[3 * i + (size_t)k];

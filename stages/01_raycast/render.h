@@ -23,7 +23,7 @@ struct renderer {
 };
 
 /* Radiance leaving the surface at h towards the ray's origin. */
-vec3 shade(const struct renderer *renderer, const struct hit *h);
+vec3 shade(const struct renderer *renderer, const struct hit *h, struct stats *st);
 
 /* Radiance arriving at r.o from direction -r.d. */
 vec3 trace(const struct renderer *renderer, ray r, struct stats *st);

@@ -5,6 +5,7 @@
 #include "render.h"
 
 #include "light.h"
+#include "trace.h"
 
 /* The Lambertian albedo this stage shades a material with.  Materials whose
  * optics arrive in a later stage get the simplification feature_table.c
@@ -32,8 +33,11 @@ shade(const struct renderer *renderer, const struct hit *h, struct stats *st)
     const struct scene *s = renderer->scene;
     vec3 albedo = diffuse_albedo(&s->materials[h->material]);
     /* Lambert: L = (albedo / pi) E, plus the ambient term albedo * L_ambient. */
-    vec3 reflected = vec3_scale(direct_irradiance(&renderer->world, h, st), INV_PI);
-    return vec3_mul(albedo, vec3_add(reflected, s->ambient));
+    vec3 e = direct_irradiance(&renderer->world, h, st);
+    vec3 reflected = vec3_scale(e, INV_PI);
+    vec3 l = vec3_mul(albedo, vec3_add(reflected, s->ambient));
+    trace_shade(st, albedo, e, s->ambient, l);
+    return l;
 }
 
 vec3
@@ -41,8 +45,10 @@ trace(const struct renderer *renderer, ray r, struct stats *st)
 {
     struct hit h;
     if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
+        trace_miss(st, 1, r, renderer->scene->background);
         return renderer->scene->background;
     }
+    trace_hit(st, 1, r, h.t, h.p, h.prim, h.material, h.ng, h.n, h.front_face);
     return shade(renderer, &h, st);
 }
 
@@ -51,7 +57,12 @@ render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
 {
     (void)rng; /* one ray through the pixel centre: nothing is random */
     const struct renderer *renderer = ctx;
-    ray primary = camera_ray(&renderer->camera, (real)px + (real)0.5, (real)py + (real)0.5);
+    real x = (real)px + (real)0.5;
+    real y = (real)py + (real)0.5;
+    ray primary = camera_ray(&renderer->camera, x, y);
     st->rays_camera++;
-    return trace(renderer, primary, st);
+    trace_sample(st, 0, x, y, primary);
+    vec3 l = trace(renderer, primary, st);
+    trace_sample_done(st, l);
+    return l;
 }

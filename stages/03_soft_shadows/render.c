@@ -5,6 +5,8 @@
  */
 #include "render.h"
 
+#include "trace.h"
+
 /* The Lambertian albedo this stage shades a material with.  Materials whose
  * optics arrive in a later stage get the simplification feature_table.c
  * states for them. */
@@ -31,13 +33,17 @@ shade(const struct renderer *renderer, const struct hit *h, struct rng *rng, str
     const struct scene *s = renderer->scene;
     if (h->light >= 0) {
         /* An emitter (one-sided unless two_sided), black as a surface (SCENES.md). */
-        return light_emitted(s, h->light, h->front_face);
+        vec3 emitted = light_emitted(s, h->light, h->front_face);
+        trace_emission(st, emitted, true);
+        return emitted;
     }
     vec3 albedo = diffuse_albedo(&s->materials[h->material]);
     /* Lambert: L = (albedo / pi) E, plus the ambient term albedo * L_ambient. */
     vec3 e = direct_irradiance(&renderer->world, h, &renderer->shadow, rng, st);
     vec3 reflected = vec3_scale(e, INV_PI);
-    return vec3_mul(albedo, vec3_add(reflected, s->ambient));
+    vec3 l = vec3_mul(albedo, vec3_add(reflected, s->ambient));
+    trace_shade(st, albedo, e, s->ambient, l);
+    return l;
 }
 
 vec3
@@ -45,8 +51,10 @@ trace(const struct renderer *renderer, ray r, struct rng *rng, struct stats *st)
 {
     struct hit h;
     if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
+        trace_miss(st, 1, r, renderer->scene->background);
         return renderer->scene->background;
     }
+    trace_hit(st, 1, r, h.t, h.p, h.prim, h.material, h.ng, h.n, h.front_face);
     return shade(renderer, &h, rng, st);
 }
 
@@ -54,7 +62,12 @@ vec3
 render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
 {
     const struct renderer *renderer = ctx;
-    ray primary = camera_ray(&renderer->camera, (real)px + (real)0.5, (real)py + (real)0.5);
+    real x = (real)px + (real)0.5;
+    real y = (real)py + (real)0.5;
+    ray primary = camera_ray(&renderer->camera, x, y);
     st->rays_camera++;
-    return trace(renderer, primary, rng, st);
+    trace_sample(st, 0, x, y, primary);
+    vec3 l = trace(renderer, primary, rng, st);
+    trace_sample_done(st, l);
+    return l;
 }

@@ -156,14 +156,14 @@ intersect_triangle(vec3 p0, vec3 p1, vec3 p2, ray r, real t_max, real *t, real *
 static struct quad
 light_quad(const struct area_light *light)
 {
-    return (struct quad){light->corner, light->edge1, light->edge2, -1};
+    return (struct quad){light->corner, light->edge1, light->edge2, -1, light->loc.line};
 }
 
 /* A sphere light's surface, as a sphere. */
 static struct sphere
 light_sphere(const struct sphere_light *light)
 {
-    return (struct sphere){light->center, light->radius, -1};
+    return (struct sphere){light->center, light->radius, -1, light->loc.line};
 }
 
 /* An area light: its parallelogram, or for a triangle light the half of it

@@ -35,8 +35,12 @@ sample_glass(const struct material *m, const struct hit *h, vec3 d, real u, stru
     out->specular = true;
     if (u < f || !refract(d, n, eta, &out->d)) {
         out->d = reflect(d, n);
+        out->lobe = f < 1 ? "glass reflection" : "total internal reflection";
+        out->pdf = f;
         return vec3_dot(out->d, h->ng) > 0;
     }
+    out->lobe = "glass refraction";
+    out->pdf = 1 - f;
     return vec3_dot(out->d, h->ng) < 0;
 }
 
@@ -65,12 +69,16 @@ sample_bsdf(
         out->d = reflect(d, h->n);
         out->weight = vec3_scale(mirror, p_total / p_mirror);
         out->specular = true;
+        out->lobe = "mirror";
+        out->pdf = p_mirror / p_total;
     } else {
         /* f cos / pdf = (albedo / pi) cos / (cos / pi) = albedo. */
         vec3 local = sample_cosine_hemisphere(u[1], u[2]);
         out->d = onb_to_world(onb_from_normal(h->n), local);
         out->weight = vec3_scale(albedo, p_total / (p_total - p_mirror));
         out->specular = false;
+        out->lobe = "diffuse";
+        out->pdf = (p_total - p_mirror) / p_total * local.z * INV_PI;
     }
     return vec3_dot(out->d, h->ng) > 0;
 }

@@ -16,6 +16,8 @@ struct bsdf_sample {
     vec3 d; /* the new direction, unit */
     vec3 weight; /* f(d) |cos| / pdf(d), per channel */
     bool specular; /* a mirror or glass bounce: next-event estimation cannot find its light */
+    const char *lobe; /* which lobe d was drawn from, for --trace: "diffuse", "mirror", ... */
+    real pdf; /* d's density per steradian (diffuse), or its lobe's probability (specular) */
 };
 
 /* A cosine-weighted direction around +z (pdf cos(theta) / pi), from (u, v)

@@ -10,6 +10,7 @@
 
 #include "bsdf.h"
 #include "lowdisc.h"
+#include "trace.h"
 
 /* Parity (0 or 1) of the cell of a 1D checkerboard that x falls in;
  * fmod keeps it exact for coordinates too large for an integer. */
@@ -183,11 +184,13 @@ shade(
         /* Lights are black as surfaces (SCENES.md): the path ends here. */
         vec3 le = path->pdf_bsdf > 0 ? emitted_mis(renderer, h, path) : emitted(renderer, h, path);
         vec3 l = vec3_mul(path->beta, le);
+        trace_emission(st, l, path->specular);
         path->beta = vec3_splat(0);
         return l;
     }
     if (path->depth >= renderer->max_depth) {
         /* No ray may follow this vertex: not a shadow ray, not a bounce. */
+        trace_end(st, "max-depth: no ray may follow this vertex");
         path->beta = vec3_splat(0);
         return vec3_splat(0);
     }
@@ -196,14 +199,17 @@ shade(
     vec3 l = vec3_splat(0);
     if (!vec3_is_zero(albedo)) {
         l = vec3_mul(path->beta, direct_light(renderer, h, m, albedo, rng, st));
+        trace_nee(st, l);
     }
-    struct bsdf_sample bs;
+    struct bsdf_sample bs = {0};
     real u[3];
     bounce_numbers(renderer, path, rng, u);
     if (!sample_bsdf(m, albedo, h, r->d, u, &bs)) {
+        trace_end(st, "no bounce: nothing reflects here, or the direction went below the surface");
         path->beta = vec3_splat(0);
         return l;
     }
+    trace_bounce(st, bs.lobe, bs.d, bs.pdf, path->beta, vec3_mul(path->beta, bs.weight));
     path->beta = vec3_mul(path->beta, bs.weight);
     path->specular = bs.specular;
     path->pdf_bsdf = 0;
@@ -220,13 +226,14 @@ shade(
 /* Russian roulette (Arvo and Kirk, "Particle Transport and Image Synthesis",
  * 1990): past the first few bounces a path survives with probability q
  * taken from its throughput, and a survivor's throughput is divided by q, so
- * the expected value is unchanged while dim paths stop early. */
-static void
+ * the expected value is unchanged while dim paths stop early.  Returns q
+ * (1 before min_depth). */
+static real
 russian_roulette(struct path *path, int min_depth, real u)
 {
     /* LAB 07: Russian roulette */
     if (path->depth < min_depth) {
-        return;
+        return 1;
     }
     real q = fmin(vec3_max_comp(path->beta), (real)RR_MAX_SURVIVAL);
     if (u >= q) {
@@ -234,6 +241,7 @@ russian_roulette(struct path *path, int min_depth, real u)
     } else {
         path->beta = vec3_scale(path->beta, 1 / q);
     }
+    return q;
     /* END LAB */
 }
 
@@ -262,12 +270,16 @@ trace(
         struct hit h;
         if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
             /* The background is a constant environment light. */
+            trace_miss(st, path.depth, r, vec3_mul(path.beta, renderer->scene->background));
             l = vec3_add(l, vec3_mul(path.beta, renderer->scene->background));
             break;
         }
+        trace_hit(st, path.depth, r, h.t, h.p, h.prim, h.material, h.ng, h.n, h.front_face);
         l = vec3_add(l, shade(renderer, &r, &h, &path, rng, st));
         if (renderer->rr) {
-            russian_roulette(&path, renderer->rr_depth, roulette_number(renderer, &path, rng));
+            real u = roulette_number(renderer, &path, rng);
+            real q = russian_roulette(&path, renderer->rr_depth, u);
+            trace_roulette(st, q, u, !vec3_is_zero(path.beta));
         }
         path.depth++;
     }
@@ -364,8 +376,10 @@ sum_samples(
         }
         ray primary = camera_ray(&renderer->camera, (real)px + dx, (real)py + dy);
         st->rays_camera++;
+        trace_sample(st, i, (real)px + dx, (real)py + dy, primary);
         struct sample_id id = {key, (uint32_t)i};
         vec3 l = trace(renderer, primary, 1, id, rng, st);
+        trace_sample_done(st, l);
         *lum_min = fmin(*lum_min, luminance(l));
         *lum_max = fmax(*lum_max, luminance(l));
         sum = vec3_add(sum, l);

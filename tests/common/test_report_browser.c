@@ -11,19 +11,16 @@
  * the red verdict box; side by side on the desktop and one above the other
  * on the phone; and the render over the reference, cut by the slider.
  *
- * Chromium: $CHROMIUM, else /usr/bin/chromium (Debian's package); skipped
- * with a message when there is none.  It runs with a fresh profile, HOME
- * and TMPDIR in a directory of its own, removed afterwards.
+ * Chromium: browser.h; skipped with a message when there is none.
  */
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
+#include "browser.h"
 #include "check.h"
 #include "image.h"
-#include "imgread.h"
 #include "testlib.h"
 
 #define W 64
@@ -47,67 +44,6 @@ write_flat(const char *name, const float rgb[3], unsigned seed)
     ok = ok && image_write(&img, test_tmp_path(name), &err);
     image_free(&img);
     return ok;
-}
-
-static const char *
-chromium_path(void)
-{
-    const char *env = getenv("CHROMIUM");
-    if (env && env[0]) {
-        return env;
-    }
-    static const char *const candidates[] = {"/usr/bin/chromium", "/usr/bin/chromium-browser"};
-    for (size_t i = 0; i < sizeof candidates / sizeof candidates[0]; i++) {
-        if (access(candidates[i], X_OK) == 0) {
-            return candidates[i];
-        }
-    }
-    return NULL;
-}
-
-/* Screenshot of page at width x height into shot (a PNG path). */
-static bool
-screenshot(const char *chromium, const char *page, int width, int height, const char *shot)
-{
-    const char *home = test_tmp_path("chromium-home");
-    char make_dir[4200], profile[4200], tmp[4200], home_env[4200], size[64], out[4200], url[4200];
-    snprintf(profile, sizeof profile, "--user-data-dir=%s/profile", home);
-    snprintf(tmp, sizeof tmp, "TMPDIR=%s", home);
-    snprintf(home_env, sizeof home_env, "HOME=%s", home);
-    snprintf(size, sizeof size, "--window-size=%d,%d", width, height);
-    snprintf(out, sizeof out, "--screenshot=%s", shot);
-    snprintf(url, sizeof url, "file://%s", page);
-    snprintf(make_dir, sizeof make_dir, "%s", home);
-    const char *const mkdir_argv[] = {"/bin/mkdir", "-p", make_dir, NULL};
-    CHECK(test_run(mkdir_argv, NULL, 0) == 0);
-    const char *const argv[] = {
-        "/usr/bin/env",
-        tmp,
-        home_env,
-        "/usr/bin/timeout",
-        "120",
-        chromium,
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        "--hide-scrollbars",
-        profile,
-        size,
-        out,
-        url,
-        NULL};
-    char output[CAP];
-    int status = test_run(argv, output, sizeof output);
-    const char *const rm_argv[] = {"/bin/rm", "-rf", make_dir, NULL};
-    CHECK(test_run(rm_argv, NULL, 0) == 0);
-    CHECK(!test_file_exists(home));
-    CHECK_MSG(status == 0 && test_file_exists(shot), "chromium exit %d:\n%s", status, output);
-    return status == 0 && test_file_exists(shot);
 }
 
 static bool
@@ -195,15 +131,6 @@ row_runs(const struct image *shot, int y, int min_run, char *out, size_t cap)
     out[n] = '\0';
 }
 
-static bool
-read_shot(const char *path, struct image *shot)
-{
-    struct diag err = {0};
-    bool ok = imgread(path, shot, &err);
-    CHECK_MSG(ok, "%s: %s", err.file, err.msg);
-    return ok;
-}
-
 /* Write the page; false (and skip) without Chromium. */
 static const char *
 write_page(void)
@@ -232,8 +159,18 @@ static bool
 page_screenshot(const char *chromium, int width, int height, const char *name, struct image *shot)
 {
     const char *page = write_page();
-    const char *path = test_tmp_path(name);
-    return screenshot(chromium, page, width, height, path) && read_shot(path, shot);
+    char log[CAP];
+    bool ok = browser_screenshot(
+        chromium,
+        page,
+        width,
+        height,
+        test_tmp_path(name),
+        shot,
+        log,
+        sizeof log);
+    CHECK_MSG(ok, "%s", log);
+    return ok;
 }
 
 /* Where the images start (the render's first row), the colour runs along
@@ -263,14 +200,11 @@ page_layout(const struct image *shot, int min_run, const char *what)
     return l;
 }
 
-#define NO_CHROMIUM \
-    "no Chromium: apt-get install chromium (or set CHROMIUM) to test the report page in a browser"
-
 TEST(report_page_in_chromium_on_a_desktop)
 {
-    const char *chromium = chromium_path();
+    const char *chromium = browser_path();
     if (!chromium) {
-        SKIP(NO_CHROMIUM);
+        SKIP(BROWSER_MISSING);
     }
     struct image shot = {0};
     if (!page_screenshot(chromium, 1200, 900, "desktop.png", &shot)) {
@@ -295,9 +229,9 @@ TEST(report_page_in_chromium_on_a_desktop)
 
 TEST(report_page_in_chromium_on_a_phone)
 {
-    const char *chromium = chromium_path();
+    const char *chromium = browser_path();
     if (!chromium) {
-        SKIP(NO_CHROMIUM);
+        SKIP(BROWSER_MISSING);
     }
     struct image shot = {0};
     if (!page_screenshot(chromium, 390, 1400, "phone.png", &shot)) {

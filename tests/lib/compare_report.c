@@ -15,7 +15,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "atomic_file.h"
 #include "compare_report.h"
@@ -41,53 +40,6 @@ put_escaped(FILE *f, const char *s)
             fputc(*s, f);
         }
     }
-}
-
-static void
-put_base64(FILE *f, const unsigned char *data, size_t n)
-{
-    static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    for (size_t i = 0; i < n; i += 3) {
-        uint32_t v = (uint32_t)data[i] << 16;
-        v |= i + 1 < n ? (uint32_t)data[i + 1] << 8 : 0;
-        v |= i + 2 < n ? data[i + 2] : 0;
-        fputc(digits[v >> 18 & 63], f);
-        fputc(digits[v >> 12 & 63], f);
-        fputc(i + 1 < n ? digits[v >> 6 & 63] : '=', f);
-        fputc(i + 2 < n ? digits[v & 63] : '=', f);
-    }
-}
-
-/* Encode img as PNG through a temporary file (image_write is the project's
- * only PNG encoder) and return its bytes. */
-static unsigned char *
-png_bytes(const struct image *img, const char *dir, const char *name, size_t *n, struct diag *err)
-{
-    char path[4200];
-    snprintf(path, sizeof path, "%s/%s.png", dir, name);
-    if (!image_write(img, path, err)) {
-        return NULL;
-    }
-    FILE *f = fopen(path, "rb");
-    unsigned char *buf = NULL;
-    long len = -1;
-    if (f && fseek(f, 0, SEEK_END) == 0 && (len = ftell(f)) > 0 && fseek(f, 0, SEEK_SET) == 0) {
-        buf = malloc((size_t)len);
-        if (buf && fread(buf, 1, (size_t)len, f) != (size_t)len) {
-            free(buf);
-            buf = NULL;
-        }
-    }
-    if (f) {
-        fclose(f);
-    }
-    remove(path);
-    if (!buf) {
-        diag_set(err, path, 0, 0, "cannot read back the encoded image");
-        return NULL;
-    }
-    *n = (size_t)len;
-    return buf;
 }
 
 static const char style[] =
@@ -140,7 +92,7 @@ put_image(
         id ? " id=\"" : "",
         id ? id : "",
         alt);
-    put_base64(f, png, n);
+    write_base64(f, png, n);
     fputs(id ? "\">" : "\">", f);
 }
 
@@ -301,23 +253,14 @@ compare_write_html(
     const char *path,
     struct diag *err)
 {
-    const char *tmp = getenv("TMPDIR");
-    char dir[4096];
-    snprintf(dir, sizeof dir, "%s/compare.XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    if (!mkdtemp(dir)) {
-        diag_set(err, dir, 0, 0, "cannot create a temporary directory");
-        return false;
-    }
-    static const char *const names[3] = {"render", "reference", "map"};
     const struct image *images[3] = {&c->render, &c->reference, map};
     unsigned char *png[3] = {NULL, NULL, NULL};
     size_t n[3] = {0, 0, 0};
     bool ok = true;
     for (int i = 0; i < 3 && ok; i++) {
-        png[i] = png_bytes(images[i], dir, names[i], &n[i], err);
+        png[i] = image_png_bytes(images[i], &n[i], err);
         ok = png[i] != NULL;
     }
-    rmdir(dir);
     struct atomic_file af;
     if (ok && atomic_file_open(&af, path, err)) {
         write_page(af.f, c, png, n);

@@ -415,7 +415,7 @@ run_quadratic(const struct quadratic_case *qc)
     vec3 axis = vec3_normalize(vec3_make((real)0.48, (real)-0.6, (real)0.64));
     vec3 center = vec3_scale(axis, (real)qc->distance);
     real radius = (real)qc->radius;
-    struct sphere sphere = {center, radius, 0};
+    struct sphere sphere = {.center = center, .radius = radius, .material = 0};
     double ulp = (double)REAL_EPSILON * (qc->distance + qc->radius);
     double alpha = asin(qc->radius / qc->distance);
     struct rng rng = rng_make(21, 1);
@@ -506,7 +506,7 @@ tangent_errors(const struct quadratic_case *qc, int *n_rays, int *n_hits)
     static const long double offsets[] = {-1e-6L, -1e-9L, -1e-12L, 0, 1e-12L, 1e-9L, 1e-6L};
     vec3 center = vec3_scale(vec3_normalize(vec3_make(-2, 3, 1)), (real)qc->distance);
     real radius = (real)qc->radius;
-    struct sphere sphere = {center, radius, 0};
+    struct sphere sphere = {.center = center, .radius = radius, .material = 0};
     /* The distance at which the rays start, and the resolution it allows. */
     long double back = qc->distance > 2 * qc->radius ? qc->distance : 2 * qc->radius;
     long double margin = 64 * REAL_EPSILON * (back + qc->radius) / qc->radius;

@@ -1,0 +1,661 @@
+/*
+ * trace.c - the recorder of one pixel's rays (trace.h) and its text and
+ * JSON forms.  The SVG form is trace_svg.c.
+ *
+ * An event is a type, a level in the tree and a list of named fields
+ * (numbers, vectors, names of what the scene holds); the writers print the
+ * fields in the order they were recorded, so adding a number to an event is
+ * one line in its trace_log_* function.
+ */
+#include "trace_events.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct trace *
+trace_new(const struct scene *scene, int px, int py)
+{
+    struct trace *t = calloc(1, sizeof *t);
+    if (!t) {
+        return NULL;
+    }
+    t->scene = scene;
+    t->px = px;
+    t->py = py;
+    t->pass = -1;
+    return t;
+}
+
+void
+trace_free(struct trace *t)
+{
+    if (t) {
+        free(t->events);
+        free(t->passes);
+        free(t);
+    }
+}
+
+/* A new event of this type at this level; NULL (and the trace marked
+ * truncated) past TRACE_MAX_EVENTS or when memory runs out. */
+static struct trace_event *
+add_event(struct trace *t, const char *type, int level, enum trace_segment segment)
+{
+    if (t->n_events == t->cap_events) {
+        int cap = t->cap_events ? 2 * t->cap_events : 256;
+        struct trace_event *grown =
+            t->n_events < TRACE_MAX_EVENTS ? realloc(t->events, (size_t)cap * sizeof *grown) : NULL;
+        if (!grown) {
+            t->truncated = true;
+            return NULL;
+        }
+        t->events = grown;
+        t->cap_events = cap;
+    }
+    struct trace_event *e = &t->events[t->n_events++];
+    *e = (struct trace_event){.type = type, .level = level, .segment = segment, .pass = t->pass};
+    return e;
+}
+
+static struct trace_field *
+add_field(struct trace_event *e, const char *key, enum trace_field_kind kind)
+{
+    if (!e || e->n_fields == TRACE_MAX_FIELDS) {
+        return NULL;
+    }
+    struct trace_field *f = &e->fields[e->n_fields++];
+    *f = (struct trace_field){.key = key, .kind = kind};
+    return f;
+}
+
+static void
+put_num(struct trace_event *e, const char *key, real x)
+{
+    struct trace_field *f = add_field(e, key, FIELD_NUM);
+    if (f) {
+        f->x[0] = (double)x;
+    }
+}
+
+static void
+put_vec(struct trace_event *e, const char *key, vec3 v)
+{
+    struct trace_field *f = add_field(e, key, FIELD_VEC);
+    if (f) {
+        f->dims = 3;
+        f->x[0] = (double)v.x;
+        f->x[1] = (double)v.y;
+        f->x[2] = (double)v.z;
+    }
+}
+
+/* A position in the pixel, (0,0) its top-left corner. */
+static void
+put_vec2(struct trace_event *e, const char *key, real x, real y)
+{
+    struct trace_field *f = add_field(e, key, FIELD_VEC);
+    if (f) {
+        f->dims = 2;
+        f->x[0] = (double)x;
+        f->x[1] = (double)y;
+    }
+}
+
+static void
+put_int(struct trace_event *e, const char *key, enum trace_field_kind kind, long long i)
+{
+    struct trace_field *f = add_field(e, key, kind);
+    if (f) {
+        f->i = i;
+    }
+}
+
+static void
+put_text(struct trace_event *e, const char *key, const char *text)
+{
+    struct trace_field *f = add_field(e, key, FIELD_TEXT);
+    if (f) {
+        f->text = text;
+    }
+}
+
+static void
+set_segment(struct trace_event *e, vec3 from, vec3 to)
+{
+    if (e) {
+        e->from[0] = (double)from.x;
+        e->from[1] = (double)from.y;
+        e->from[2] = (double)from.z;
+        e->to[0] = (double)to.x;
+        e->to[1] = (double)to.y;
+        e->to[2] = (double)to.z;
+    }
+}
+
+void
+trace_pass_begin(struct trace *t, int pass)
+{
+    t->pass = pass;
+}
+
+void
+trace_pass_end(struct trace *t, vec3 estimate)
+{
+    if (t->n_passes == t->cap_passes) {
+        int cap = t->cap_passes ? 2 * t->cap_passes : 16;
+        struct trace_pass *grown = realloc(t->passes, (size_t)cap * sizeof *grown);
+        if (!grown) {
+            t->truncated = true;
+            return;
+        }
+        t->passes = grown;
+        t->cap_passes = cap;
+    }
+    t->passes[t->n_passes++] = (struct trace_pass){
+        .pass = t->pass,
+        .estimate = {(double)estimate.x, (double)estimate.y, (double)estimate.z}};
+}
+
+void
+trace_set_value(struct trace *t, const float rgb[3])
+{
+    memcpy(t->value, rgb, sizeof t->value);
+    t->has_value = true;
+}
+
+void
+trace_log_sample(struct trace *t, int index, real film_x, real film_y, ray r)
+{
+    struct trace_event *e = add_event(t, "sample", 0, SEG_NONE);
+    put_int(e, "index", FIELD_INT, index);
+    put_vec2(e, "subpixel", film_x - (real)t->px, film_y - (real)t->py);
+    put_vec(e, "origin", r.o);
+    put_vec(e, "direction", r.d);
+    t->have_point = false;
+}
+
+void
+trace_log_sample_done(struct trace *t, vec3 radiance)
+{
+    struct trace_event *e = add_event(t, "radiance", 1, SEG_NONE);
+    put_vec(e, "value", radiance);
+}
+
+/* How far the origin of a ray spawned at a hit lies from the hit point:
+ * the offset that keeps it from hitting its own surface. */
+static void
+put_offset(struct trace_event *e, vec3 origin, vec3 from)
+{
+    put_num(e, "offset", vec3_length(vec3_sub(origin, from)));
+}
+
+/* A ray of this depth (> 1) starts at the hit point of the depth before. */
+static void
+put_spawn_offset(struct trace *t, struct trace_event *e, int depth, ray r)
+{
+    if (depth > 1 && t->have_point) {
+        put_offset(e, r.o, depth - 1 <= TRACE_MAX_DEPTH ? t->vertex[depth - 2] : t->last_point);
+    }
+}
+
+/* Remember hit point p of a ray of this depth. */
+static void
+remember_vertex(struct trace *t, int depth, vec3 p)
+{
+    if (depth >= 1 && depth <= TRACE_MAX_DEPTH) {
+        t->vertex[depth - 1] = p;
+    }
+    t->last_point = p;
+    t->have_point = true;
+}
+
+void
+trace_log_hit(
+    struct trace *t,
+    int depth,
+    ray r,
+    real dist,
+    vec3 p,
+    int prim,
+    int material,
+    vec3 ng,
+    vec3 n,
+    bool front_face)
+{
+    enum trace_segment segment = depth <= 1 ? SEG_CAMERA : SEG_BOUNCE;
+    struct trace_event *e = add_event(t, "hit", 1, segment);
+    put_int(e, "depth", FIELD_INT, depth);
+    put_vec(e, "origin", r.o);
+    put_vec(e, "direction", r.d);
+    put_spawn_offset(t, e, depth, r);
+    put_num(e, "t", dist);
+    put_int(e, "primitive", FIELD_PRIM, prim);
+    put_int(e, "material", FIELD_MATERIAL, material);
+    put_vec(e, "point", p);
+    put_vec(e, "ng", ng);
+    put_vec(e, "n", n);
+    put_text(e, "side", front_face ? "front" : "back");
+    set_segment(e, r.o, p);
+    remember_vertex(t, depth, p);
+}
+
+void
+trace_log_miss(struct trace *t, int depth, ray r, vec3 radiance)
+{
+    struct trace_event *e = add_event(t, "miss", 1, SEG_MISS);
+    put_int(e, "depth", FIELD_INT, depth);
+    put_vec(e, "origin", r.o);
+    put_vec(e, "direction", r.d);
+    put_spawn_offset(t, e, depth, r);
+    put_vec(e, "radiance", radiance);
+    set_segment(e, r.o, r.d); /* "to" is the direction: the SVG draws it a short way */
+}
+
+void
+trace_log_light(struct trace *t, enum trace_light_kind kind, int index)
+{
+    struct trace_event *e = add_event(t, "light", 2, SEG_NONE);
+    put_int(e, "source", FIELD_LIGHT, (long long)kind << 32 | (unsigned)index);
+}
+
+void
+trace_log_shadow(struct trace *t, ray r, real t_max, int blocker, real blocker_dist)
+{
+    enum trace_segment segment = blocker < 0 ? SEG_SHADOW_CLEAR : SEG_SHADOW_BLOCKED;
+    struct trace_event *e = add_event(t, "shadow", 3, segment);
+    put_vec(e, "origin", r.o);
+    put_vec(e, "direction", r.d);
+    if (t->have_point) {
+        put_offset(e, r.o, t->last_point);
+    }
+    put_num(e, "t_max", t_max);
+    if (blocker < 0) {
+        put_text(e, "result", "clear");
+        set_segment(e, r.o, ray_at(r, t_max));
+        return;
+    }
+    put_text(e, "result", "blocked");
+    put_int(e, "blocker", FIELD_PRIM, blocker);
+    put_num(e, "blocker_t", blocker_dist);
+    set_segment(e, r.o, ray_at(r, blocker_dist));
+}
+
+void
+trace_log_light_sample(
+    struct trace *t,
+    vec3 y,
+    real pdf_area,
+    real pdf_solid_angle,
+    vec3 irradiance)
+{
+    struct trace_event *e = add_event(t, "light_sample", 3, SEG_NONE);
+    put_vec(e, "point", y);
+    put_num(e, "pdf_area", pdf_area);
+    put_num(e, "pdf_solid_angle", pdf_solid_angle);
+    put_vec(e, "irradiance", irradiance);
+}
+
+void
+trace_log_adaptive(struct trace *t, int probes, int blocked, int more)
+{
+    struct trace_event *e = add_event(t, "adaptive", 3, SEG_NONE);
+    put_int(e, "probes", FIELD_INT, probes);
+    put_int(e, "blocked", FIELD_INT, blocked);
+    put_int(e, "more_samples", FIELD_INT, more);
+    const char *verdict = more > 0            ? "penumbra: more samples"
+                          : blocked == 0      ? "all probes clear: the exact unoccluded irradiance"
+                          : blocked == probes ? "all probes blocked: umbra"
+                                              : "the probes' mean";
+    put_text(e, "decision", verdict);
+}
+
+void
+trace_log_shade(struct trace *t, vec3 albedo, vec3 irradiance, vec3 ambient, vec3 radiance)
+{
+    struct trace_event *e = add_event(t, "shade", 2, SEG_NONE);
+    put_vec(e, "albedo", albedo);
+    put_vec(e, "irradiance", irradiance);
+    put_vec(e, "ambient", ambient);
+    put_vec(e, "radiance", radiance);
+}
+
+void
+trace_log_specular(struct trace *t, const char *event, real fresnel, vec3 weight)
+{
+    struct trace_event *e = add_event(t, "specular", 2, SEG_NONE);
+    put_text(e, "event", event);
+    put_num(e, "fresnel", fresnel);
+    put_vec(e, "weight", weight);
+}
+
+void
+trace_log_bounce(
+    struct trace *t,
+    const char *lobe,
+    vec3 d,
+    real pdf,
+    vec3 beta_before,
+    vec3 beta_after)
+{
+    struct trace_event *e = add_event(t, "bounce", 2, SEG_NONE);
+    put_text(e, "lobe", lobe ? lobe : "?");
+    put_vec(e, "direction", d);
+    put_num(e, "pdf", pdf);
+    put_vec(e, "beta_before", beta_before);
+    put_vec(e, "beta_after", beta_after);
+}
+
+void
+trace_log_nee(struct trace *t, vec3 radiance)
+{
+    struct trace_event *e = add_event(t, "nee", 2, SEG_NONE);
+    put_vec(e, "radiance", radiance);
+}
+
+void
+trace_log_mis(struct trace *t, real pdf_light, real pdf_bsdf, real weight)
+{
+    if (!(pdf_bsdf > 0)) {
+        return; /* no MIS here: the shadow ray's weight is 1 */
+    }
+    struct trace_event *e = add_event(t, "mis", 3, SEG_NONE);
+    put_num(e, "pdf_light", pdf_light);
+    put_num(e, "pdf_bsdf", pdf_bsdf);
+    put_num(e, "weight", weight);
+}
+
+void
+trace_log_emission(struct trace *t, vec3 radiance, bool after_specular)
+{
+    struct trace_event *e = add_event(t, "emission", 2, SEG_NONE);
+    put_vec(e, "radiance", radiance);
+    put_text(e, "found_by", after_specular ? "camera or specular ray" : "diffuse bounce");
+}
+
+void
+trace_log_roulette(struct trace *t, real q, real u, bool survived)
+{
+    if (!(q > 0)) {
+        return; /* the path had already ended (its throughput is 0) */
+    }
+    struct trace_event *e = add_event(t, "roulette", 2, SEG_NONE);
+    put_num(e, "q", q);
+    put_num(e, "u", u);
+    put_text(e, "outcome", survived ? "survives (throughput / q)" : "stops");
+}
+
+void
+trace_log_end(struct trace *t, const char *why)
+{
+    struct trace_event *e = add_event(t, "end", 2, SEG_NONE);
+    put_text(e, "why", why);
+}
+
+/* --- names -------------------------------------------------------------- */
+
+void
+trace_prim_name(const struct scene *s, int prim, struct trace_name *out)
+{
+    int shapes[] = {s->n_spheres, s->n_quads, s->n_triangles, s->n_area_lights, s->n_sphere_lights};
+    static const char *const kinds[] = {"sphere", "quad", "triangle", "area_light", "sphere_light"};
+    int index = prim;
+    int k = 0;
+    while (k < 4 && index >= shapes[k]) {
+        index -= shapes[k];
+        k++;
+    }
+    *out = (struct trace_name){.kind = kinds[k], .index = index};
+    switch (k) {
+    case 0:
+        out->line = index < s->n_spheres ? s->spheres[index].line : 0;
+        break;
+    case 1:
+        out->line = s->quads[index].line;
+        break;
+    case 2:
+        out->line = s->triangles[index].line;
+        break;
+    case 3:
+        out->line = s->area_lights[index].loc.line;
+        break;
+    default:
+        out->line = index < s->n_sphere_lights ? s->sphere_lights[index].loc.line : 0;
+        break;
+    }
+}
+
+void
+trace_light_name(const struct scene *s, long long code, struct trace_name *out)
+{
+    int kind = (int)(code >> 32);
+    int index = (int)(code & 0xffffffff);
+    static const char *const kinds[] = {"point_light", "area_light", "sphere_light"};
+    *out = (struct trace_name){.kind = kinds[kind], .index = index};
+    if (kind == TRACE_POINT_LIGHT) {
+        out->line = s->point_lights[index].loc.line;
+    } else if (kind == TRACE_AREA_LIGHT) {
+        out->line = s->area_lights[index].loc.line;
+    } else {
+        out->line = s->sphere_lights[index].loc.line;
+    }
+}
+
+/* --- text ----------------------------------------------------------------- */
+
+static void
+text_vec(FILE *f, const double x[3], int dims)
+{
+    if (dims == 2) {
+        fprintf(f, "(%.4g %.4g)", x[0], x[1]);
+    } else {
+        fprintf(f, "(%.4g %.4g %.4g)", x[0], x[1], x[2]);
+    }
+}
+
+static void
+text_field(FILE *f, const struct trace *t, const struct trace_field *field)
+{
+    struct trace_name name;
+    fprintf(f, "  %s ", field->key);
+    switch (field->kind) {
+    case FIELD_NUM:
+        if (isnan(field->x[0])) {
+            fprintf(f, "n/a");
+        } else {
+            fprintf(f, "%.4g", field->x[0]);
+        }
+        break;
+    case FIELD_VEC:
+        text_vec(f, field->x, field->dims);
+        break;
+    case FIELD_INT:
+        fprintf(f, "%lld", field->i);
+        break;
+    case FIELD_TEXT:
+        fprintf(f, "%s", field->text);
+        break;
+    case FIELD_PRIM:
+        trace_prim_name(t->scene, (int)field->i, &name);
+        fprintf(f, "%s #%d (line %d)", name.kind, name.index, name.line);
+        break;
+    case FIELD_MATERIAL:
+        if (field->i < 0) {
+            fprintf(f, "none");
+        } else {
+            const struct material *m = &t->scene->materials[field->i];
+            fprintf(f, "'%s' (line %d)", m->name, m->loc.line);
+        }
+        break;
+    case FIELD_LIGHT:
+        trace_light_name(t->scene, field->i, &name);
+        fprintf(f, "%s #%d (line %d)", name.kind, name.index, name.line);
+        break;
+    }
+}
+
+void
+trace_write_text(FILE *f, const struct trace *t)
+{
+    fprintf(f, "pixel (%d, %d) of %s\n", t->px, t->py, t->scene->path);
+    fprintf(f, "value (%.6g %.6g %.6g)", t->value[0], t->value[1], t->value[2]);
+    fprintf(f, "  the mean of %d pass estimates:", t->n_passes);
+    for (int i = 0; i < t->n_passes && i < 8; i++) {
+        fprintf(f, " ");
+        text_vec(f, t->passes[i].estimate, 3);
+    }
+    fprintf(f, "%s\n", t->n_passes > 8 ? " ..." : "");
+    int pass = -1;
+    for (int i = 0; i < t->n_events; i++) {
+        const struct trace_event *e = &t->events[i];
+        if (e->pass != pass) {
+            pass = e->pass;
+            fprintf(f, "pass %d\n", pass);
+        }
+        fprintf(f, "%*s%s", 2 + 2 * e->level, "", e->type);
+        for (int k = 0; k < e->n_fields; k++) {
+            text_field(f, t, &e->fields[k]);
+        }
+        fprintf(f, "\n");
+    }
+    if (t->truncated) {
+        fprintf(f, "(truncated: only the first %d events were kept)\n", t->n_events);
+    }
+}
+
+/* --- JSON ----------------------------------------------------------------- */
+
+/* A number as JSON has them: non-finite values are null. */
+static void
+json_number(FILE *f, double x)
+{
+    if (isfinite(x)) {
+        fprintf(f, "%.17g", x);
+    } else {
+        fprintf(f, "null");
+    }
+}
+
+static void
+json_vec(FILE *f, const double x[3], int dims)
+{
+    fprintf(f, "[");
+    for (int i = 0; i < dims; i++) {
+        fprintf(f, i ? ", " : "");
+        json_number(f, x[i]);
+    }
+    fprintf(f, "]");
+}
+
+/* A string of the scene (a material's name) with JSON's escapes. */
+static void
+json_string(FILE *f, const char *s)
+{
+    fputc('"', f);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') {
+            fprintf(f, "\\%c", c);
+        } else if (c < 0x20) {
+            fprintf(f, "\\u%04x", c);
+        } else {
+            fputc(c, f);
+        }
+    }
+    fputc('"', f);
+}
+
+static void
+json_name(FILE *f, const struct trace_name *name)
+{
+    fprintf(
+        f,
+        "{\"kind\": \"%s\", \"index\": %d, \"line\": %d}",
+        name->kind,
+        name->index,
+        name->line);
+}
+
+static void
+json_field(FILE *f, const struct trace *t, const struct trace_field *field)
+{
+    struct trace_name name;
+    fprintf(f, ", \"%s\": ", field->key);
+    switch (field->kind) {
+    case FIELD_NUM:
+        json_number(f, field->x[0]);
+        break;
+    case FIELD_VEC:
+        json_vec(f, field->x, field->dims);
+        break;
+    case FIELD_INT:
+        fprintf(f, "%lld", field->i);
+        break;
+    case FIELD_TEXT:
+        json_string(f, field->text);
+        break;
+    case FIELD_PRIM:
+        trace_prim_name(t->scene, (int)field->i, &name);
+        json_name(f, &name);
+        break;
+    case FIELD_MATERIAL:
+        if (field->i < 0) {
+            fprintf(f, "null");
+        } else {
+            const struct material *m = &t->scene->materials[field->i];
+            fprintf(f, "{\"name\": ");
+            json_string(f, m->name);
+            fprintf(f, ", \"line\": %d}", m->loc.line);
+        }
+        break;
+    case FIELD_LIGHT:
+        trace_light_name(t->scene, field->i, &name);
+        json_name(f, &name);
+        break;
+    }
+}
+
+static void
+json_event(FILE *f, const struct trace *t, const struct trace_event *e)
+{
+    fprintf(f, "{\"type\": \"%s\", \"level\": %d", e->type, e->level);
+    for (int k = 0; k < e->n_fields; k++) {
+        json_field(f, t, &e->fields[k]);
+    }
+    fprintf(f, "}");
+}
+
+void
+trace_write_json(FILE *f, const struct trace *t)
+{
+    double value[3] = {t->value[0], t->value[1], t->value[2]};
+    fprintf(f, "{\n  \"scene\": ");
+    json_string(f, t->scene->path);
+    fprintf(f, ",\n  \"pixel\": [%d, %d],\n  \"value\": ", t->px, t->py);
+    json_vec(f, value, 3);
+    fprintf(f, ",\n  \"passes\": [");
+    for (int i = 0; i < t->n_passes; i++) {
+        fprintf(f, "%s{\"pass\": %d, \"estimate\": ", i ? ", " : "", t->passes[i].pass);
+        json_vec(f, t->passes[i].estimate, 3);
+        fprintf(f, "}");
+    }
+    fprintf(f, "],\n  \"truncated\": %s,\n  \"samples\": [", t->truncated ? "true" : "false");
+    bool first_sample = true;
+    for (int i = 0; i < t->n_events;) {
+        const struct trace_event *s = &t->events[i];
+        fprintf(f, "%s\n    {\"pass\": %d", first_sample ? "" : ",", s->pass);
+        first_sample = false;
+        for (int k = 0; k < s->n_fields; k++) {
+            json_field(f, t, &s->fields[k]);
+        }
+        fprintf(f, ", \"events\": [");
+        int j = i + 1;
+        for (; j < t->n_events && t->events[j].level > 0; j++) {
+            fprintf(f, "%s\n      ", j > i + 1 ? "," : "");
+            json_event(f, t, &t->events[j]);
+        }
+        fprintf(f, "]}");
+        i = j;
+    }
+    fprintf(f, "\n  ]\n}\n");
+}

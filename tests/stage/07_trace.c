@@ -1,0 +1,128 @@
+/*
+ * 07_trace.c - what a traced path says (docs/inspect.md), stage 07:
+ *   - every path ends once, and the trace says how: Russian roulette
+ *     ("stops"), an emitter hit, a ray leaving the scene, or an `end` event
+ *     (--max-depth, nothing reflects); so those events number the samples;
+ *   - Russian roulette: q in (0, 1], and the path stops exactly when the
+ *     number drawn is u >= q; 1 before --rr-depth;
+ *   - each diffuse bounce multiplies the throughput by the albedo (the
+ *     weight f cos / pdf of a cosine-weighted direction), and its pdf is a
+ *     density cos(theta) / pi <= 1 / pi;
+ *   - at the rim of a bubble (ior 0.6) the sampled lobe is total internal
+ *     reflection, with probability 1;
+ *   - --pixel with --time is refused (a replay needs a fixed number of
+ *     samples).
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "check.h"
+#include "stagecheck.h"
+#include "testlib.h"
+#include "tracecheck.h"
+
+#define CAP 4096
+#define MAX_EVENTS 4096
+
+/* A closed grey room with an opening, lit from the ceiling. */
+static const char *
+room_scene(void)
+{
+    return stagecheck_scene(
+        "room.scene",
+        "camera origin 0 1 3.5 target 0 1 0 up 0 1 0 fov 45\n"
+        "image width 16 height 16\n"
+        "material grey diffuse albedo 0.5 0.5 0.5\n"
+        "quad corner -1 0 -1 edge1 0 0 2 edge2 2 0 0 material grey\n"
+        "quad corner -1 2 -1 edge1 2 0 0 edge2 0 0 2 material grey\n"
+        "quad corner -1 0 -1 edge1 2 0 0 edge2 0 2 0 material grey\n"
+        "quad corner -1 0 -1 edge1 0 2 0 edge2 0 0 2 material grey\n"
+        "quad corner 1 0 -1 edge1 0 0 2 edge2 0 2 0 material grey\n"
+        "area_light corner -0.3 1.98 -0.3 edge1 0.6 0 0 edge2 0 0 0.6 radiance 10 10 10\n");
+}
+
+TEST(every_path_ends_once_and_says_why)
+{
+    const char *const args[] = {"-s", "16", NULL};
+    const char *trace = tracecheck_pixel(room_scene(), 8, 10, args);
+    if (!trace) {
+        CHECK(false);
+        return;
+    }
+    int samples = tracecheck_count(trace, "\"type\": \"radiance\"");
+    int stops = tracecheck_count(trace, "\"outcome\": \"stops\"");
+    int ends = tracecheck_count(trace, "\"type\": \"end\"");
+    int emitters = tracecheck_count(trace, "\"type\": \"emission\"");
+    int misses = tracecheck_count(trace, "\"type\": \"miss\"");
+    CHECK_MSG(
+        samples == 16 && stops + ends + emitters + misses == samples,
+        "%d samples; %d roulette stops, %d ends, %d emitter hits, %d misses",
+        samples,
+        stops,
+        ends,
+        emitters,
+        misses);
+    static double q[MAX_EVENTS], u[MAX_EVENTS];
+    int n = tracecheck_numbers(trace, "\"q\": ", q, MAX_EVENTS);
+    CHECK(n == tracecheck_numbers(trace, "\"u\": ", u, MAX_EVENTS) && n > 0 && n <= MAX_EVENTS);
+    int stopped = 0;
+    for (int i = 0; i < n && i < MAX_EVENTS; i++) {
+        CHECK(q[i] > 0 && q[i] <= 1 && u[i] >= 0 && u[i] < 1);
+        stopped += u[i] >= q[i];
+    }
+    CHECK(stopped == stops);
+    /* Diffuse bounces: beta_after = beta_before x 0.5, pdf <= 1 / pi. */
+    static double before[MAX_EVENTS], after[MAX_EVENTS], pdf[MAX_EVENTS];
+    int b = tracecheck_numbers(trace, "\"beta_before\": [", before, MAX_EVENTS);
+    CHECK(b == tracecheck_numbers(trace, "\"beta_after\": [", after, MAX_EVENTS) && b > 0);
+    CHECK(b == tracecheck_numbers(trace, "\"pdf\": ", pdf, MAX_EVENTS));
+    for (int i = 0; i < b && i < MAX_EVENTS; i++) {
+        CHECK_NEAR(after[i], 0.5 * before[i], 1e-6 * before[i]);
+        CHECK(pdf[i] > 0 && pdf[i] <= 0.31830988618379070 + 1e-9 /* 1 / pi */);
+    }
+}
+
+TEST(max_depth_ends_paths)
+{
+    const char *const args[] = {"-s", "4", "--no-rr", "--max-depth", "3", NULL};
+    const char *trace = tracecheck_pixel(room_scene(), 8, 10, args);
+    CHECK(trace && tracecheck_count(trace, "\"type\": \"roulette\"") == 0);
+    int ends = trace ? tracecheck_count(trace, "max-depth") : 0;
+    int others = trace ? tracecheck_count(trace, "\"type\": \"emission\"")
+                             + tracecheck_count(trace, "\"type\": \"miss\"")
+                       : 0;
+    CHECK_MSG(ends >= 1 && ends + others == 4, "%d max-depth ends, %d other ends", ends, others);
+    CHECK(trace && tracecheck_count(trace, "\"depth\": 4") == 0);
+}
+
+TEST(bubble_rim_samples_total_internal_reflection)
+{
+    const char *scene = stagecheck_scene(
+        "bubble.scene",
+        "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 30\n"
+        "image width 31 height 31\n"
+        "background color 0.5 0.5 0.5\n"
+        "material bubble glass ior 0.6\n"
+        "sphere center 0 0 0 radius 1 material bubble\n");
+    const char *const args[] = {"-s", "1", "--aa", "grid", NULL};
+    const char *trace = tracecheck_pixel(scene, 26, 15, args);
+    CHECK(trace && tracecheck_count(trace, "\"lobe\": \"total internal reflection\"") >= 1);
+    double pdf[1];
+    CHECK(trace && tracecheck_numbers(trace, "\"pdf\": ", pdf, 1) >= 1);
+    CHECK_NEAR(pdf[0], 1.0, 0.0);
+}
+
+TEST(time_limit_is_refused)
+{
+    const char *const args[] = {"--pixel", "1,1", "--time", "1", NULL};
+    char out[CAP];
+    int status = test_render(room_scene(), args, out, sizeof out);
+    CHECK_MSG(status == 2 && strstr(out, "--time"), "exit %d\n%s", status, out);
+}
+
+TEST_MAIN(
+    TEST_ENTRY(every_path_ends_once_and_says_why),
+    TEST_ENTRY(max_depth_ends_paths),
+    TEST_ENTRY(bubble_rim_samples_total_internal_reflection),
+    TEST_ENTRY(time_limit_is_refused))
