@@ -4,7 +4,7 @@
 #
 # For each scene, stage 07 with its defaults (MIS on, lights sampled by
 # area), with --mis off (as before MIS), with --light-sampling solid-angle
-# and with the Sobol sampler (--sampler sobol --aa sobol): spp x relMSE
+# and auto, and with the Sobol sampler (--sampler sobol --aa sobol): spp x relMSE
 # against Mitsuba's converged reference (a constant for an unbiased
 # estimator: relMSE falls as 1/spp), seconds per spp at 256x256 on 2
 # threads, and from the two the time to reach the scene's target relMSE
@@ -143,6 +143,8 @@ for scene in $scenes; do
         echo "stagelight_07 $(ours "$scene" "$spp" "$round")" >>"$work/rows"
         echo "stagelight_07_mis_off $(ours "$scene" "$spp" "$round" --mis off)" >>"$work/rows"
         echo "stagelight_07_solid_angle $(ours "$scene" "$spp" "$round" --light-sampling solid-angle)" \
+            >>"$work/rows"
+        echo "stagelight_07_auto $(ours "$scene" "$spp" "$round" --light-sampling auto)" \
             >>"$work/rows"
         echo "stagelight_07_sobol $(ours "$scene" "$spp" "$round" --sampler sobol --aa sobol)" \
             >>"$work/rows"
