@@ -127,6 +127,11 @@ branches:
 check-labs: all
 	@tests/lab/check-labs.sh --full
 
+# The reference scenes' feature masks, by which make grade breaks the error
+# down (tests/reference/NAME.feature.pfm, docs/aov.md).
+reference-masks: 07_pathtrace
+	@tests/lab/reference-masks.sh
+
 clean:
 	rm -rf build
 
@@ -154,7 +159,8 @@ help:
 	'make diffs            docs/diffs/*.diff and the diff table of docs/README.md' \
 	'make branches OUT=dir the stages as a git repository, one commit per stage (FORCE=1 replaces)' \
 	'make check-labs       every check of every lab handout' \
+	'make reference-masks  tests/reference/*.feature.pfm: the reference scenes'"'"' regions, for make grade' \
 	'make clean            remove build/' \
 	'make help             this list'
 
-.PHONY: all models common tools test sanitize fuzz config demo gallery trade bench docs-images clean lab grade diffs branches check-labs help $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config demo gallery trade bench docs-images clean lab grade diffs branches check-labs reference-masks help $(STAGES)

@@ -591,6 +591,148 @@ TEST(report_page_is_one_self_contained_file)
     free(html);
 }
 
+/* ---- by region (--regions) ------------------------------------------------------ */
+
+/* The label of (x, y) in the synthetic feature pass: diffuse-lit (1) on
+ * the left half, penumbra (2) in a diagonal band on the right, umbra (3)
+ * elsewhere. */
+static int
+region_of(int x, int y)
+{
+    if (x < W / 2) {
+        return 1;
+    }
+    int band = x - W / 2 - y;
+    return band >= -6 && band <= 6 ? 2 : 3;
+}
+
+/* labels.pfm, and renders a.pfm, b.pfm (seeds sa, sb) whose pixels of
+ * region `planted` are scaled by `scale`. */
+static bool
+write_region_set(uint64_t sa, uint64_t sb, int planted, double scale)
+{
+    struct image ref = {0}, labels = {0}, r[2] = {{0}};
+    struct diag err;
+    make_reference(&ref);
+    CHECK(image_alloc(&labels, W, H, &err));
+    for (int k = 0; k < 2; k++) {
+        make_render(&ref, k ? sb : sa, 0, 0, 1, &r[k]);
+    }
+    for (int y = 0; y < H; y++) {
+        for (int x = 0; x < W; x++) {
+            for (int c = 0; c < 3; c++) {
+                image_pixel(&labels, x, y)[c] = (float)region_of(x, y);
+                for (int k = 0; k < 2; k++) {
+                    float *v = image_pixel(&r[k], x, y);
+                    v[c] = region_of(x, y) == planted ? (float)(v[c] * scale) : v[c];
+                }
+            }
+        }
+    }
+    bool ok = write_image(&ref, "ref.pfm") && write_image(&labels, "labels.pfm")
+              && write_image(&r[0], "a.pfm") && write_image(&r[1], "b.pfm");
+    image_free(&ref);
+    image_free(&labels);
+    image_free(&r[0]);
+    image_free(&r[1]);
+    return ok;
+}
+
+/* A 2% bias confined to the penumbra band is named first, with a pixel of
+ * the band to replay; the other regions are consistent; with no bias, no
+ * region is biased for ten pairs of seeds. */
+TEST(regions_name_the_biased_region_and_one_of_its_pixels)
+{
+    char out[CAP];
+    const char *const args[] =
+        {"--regions", TMP("labels.pfm"), TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), NULL};
+    for (int sign = -1; sign <= 1; sign += 2) {
+        CHECK(write_region_set(31, 32, 2, 1 + sign * 0.02));
+        int status = compare(args, out);
+        const char *line = strstr(out, "\n  penumbra");
+        const char *first = strstr(out, "regions    1 of 3 biased");
+        CHECK_MSG(status == 1 && line && first && strstr(first, "\n  penumbra") == line, "%s", out);
+        CHECK_MSG(
+            line && strstr(line, sign > 0 ? "brighter" : "darker") && strstr(line, ": biased\n"),
+            "%s",
+            out);
+        int x = -1, y = -1;
+        const char *replay = strstr(out, "replay pixel ");
+        CHECK(replay && sscanf(replay, "replay pixel %d,%d", &x, &y) == 2);
+        CHECK_MSG(x >= 0 && x < W && y >= 0 && y < H && region_of(x, y) == 2, "pixel %d,%d", x, y);
+        CHECK(strstr(out, "render --pixel") != NULL);
+        CHECK(strstr(out, "diffuse-lit") && strstr(out, "umbra"));
+    }
+    /* The report page has the same lines. */
+    const char *const html[] = {
+        "--regions",
+        TMP("labels.pfm"),
+        "--html",
+        TMP("regions.html"),
+        TMP("a.pfm"),
+        TMP("b.pfm"),
+        TMP("ref.pfm"),
+        NULL};
+    CHECK(compare(html, out) == 1);
+    size_t len = 0;
+    char *page = test_read_file(TMP("regions.html"), &len);
+    CHECK(
+        page && strstr(page, "<h2>By region</h2>") && strstr(page, "<th>penumbra</th>")
+        && strstr(page, "replay pixel"));
+    free(page);
+    for (uint64_t seed = 1; seed <= 10; seed++) {
+        CHECK(write_region_set(2 * seed + 40, 2 * seed + 41, 0, 1));
+        int status = compare(args, out);
+        CHECK_MSG(
+            status == 0 && strstr(out, "regions    0 of 3 biased"),
+            "seed %d:\n%s",
+            (int)seed,
+            out);
+    }
+    printf("%s", out);
+}
+
+/* One render alone: each region's relMSE against --max-relmse. */
+TEST(regions_without_noise_hold_each_region_to_the_limit)
+{
+    char out[CAP];
+    CHECK(write_region_set(51, 52, 3, 1.2));
+    const char *const args[] = {
+        "--regions",
+        TMP("labels.pfm"),
+        "--max-relmse",
+        "0.01",
+        TMP("a.pfm"),
+        TMP("ref.pfm"),
+        NULL};
+    int status = compare(args, out);
+    CHECK_MSG(status == 1 && strstr(out, "regions    1 of 3 biased"), "%s", out);
+    const char *umbra = strstr(out, "\n  umbra");
+    CHECK_MSG(
+        umbra && strstr(umbra, "over the limit") && strstr(out, "under the limit"),
+        "%s",
+        out);
+}
+
+/* A label image that is not one: exit 2, saying why. */
+TEST(regions_refuse_a_bad_label_image)
+{
+    char out[CAP];
+    CHECK(write_region_set(61, 62, 0, 1));
+    const char *const mismatched[] =
+        {"--regions", TMP("a.pfm"), TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), NULL};
+    CHECK(compare(mismatched, out) == 2);
+    CHECK_MSG(strstr(out, "labels are whole numbers") != NULL, "%s", out);
+    struct image small = {0};
+    struct diag err;
+    CHECK(image_alloc(&small, 8, 8, &err) && write_image(&small, "small.pfm"));
+    image_free(&small);
+    const char *const sized[] =
+        {"--regions", TMP("small.pfm"), TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), NULL};
+    CHECK(compare(sized, out) == 2);
+    CHECK_MSG(strstr(out, "8x8") != NULL, "%s", out);
+}
+
 TEST_MAIN(
     TEST_ENTRY(png_reader_reads_back_what_the_writer_wrote),
     TEST_ENTRY(png_reader_reads_other_encoders_files),
@@ -606,4 +748,7 @@ TEST_MAIN(
     TEST_ENTRY(nan_pixels_fail),
     TEST_ENTRY(bad_input_exits_2),
     TEST_ENTRY(error_map_shows_sign_outlines_failing_blocks_and_has_a_legend),
-    TEST_ENTRY(report_page_is_one_self_contained_file))
+    TEST_ENTRY(report_page_is_one_self_contained_file),
+    TEST_ENTRY(regions_name_the_biased_region_and_one_of_its_pixels),
+    TEST_ENTRY(regions_without_noise_hold_each_region_to_the_limit),
+    TEST_ENTRY(regions_refuse_a_bad_label_image))

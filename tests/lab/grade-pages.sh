@@ -21,6 +21,11 @@
 #                 different seeds, block tests (noise or bias)
 #   stage 07      the three *_gi references: two renders of 64 spp each,
 #                 block tests
+# Each page's verdict is followed by its error region by region (compare
+# --regions with the reference scene's feature mask, tests/reference/
+# NAME.feature.pfm, docs/aov.md): a line per region, the biased ones first,
+# each with one of its pixels and the command that replays it
+# (render --pixel X,Y --trace -, with the options of the render compared).
 # Exit status: 0 pages written (whatever their verdicts), 1 a render or a
 # page failed, 2 usage.
 set -eu
@@ -49,6 +54,7 @@ failed=0
 # page NAME SCENE RENDERS "RENDER OPTIONS" [COMPARE OPTIONS...]
 page() {
     pg_name=$1
+    pg_base=$2
     pg_scene=$dir/scenes/$2.scene
     pg_renders=$3
     pg_options=$4
@@ -68,14 +74,20 @@ page() {
         pg_i=$((pg_i + 1))
     done
     pg_status=0
+    pg_regions=
+    [ -f "$refs/$pg_base.feature.pfm" ] && pg_regions="--regions $refs/$pg_base.feature.pfm"
     # shellcheck disable=SC2086
-    "$compare" -q --title "lab $nn: $pg_name" --html "$out/$pg_name.html" "$@" $pg_inputs \
+    "$compare" -q --title "lab $nn: $pg_name" --html "$out/$pg_name.html" $pg_regions "$@" $pg_inputs \
         "$refs/$pg_name.pfm" >"$work/verdict" 2>&1 || pg_status=$?
     if [ "$pg_status" -ge 2 ]; then
         echo "    $pg_name: compare failed: $(cat "$work/verdict")"
         failed=1
     else
-        echo "    $pg_name: $(cat "$work/verdict")"
+        echo "    $pg_name: $(head -n 1 "$work/verdict")"
+        # The regions' lines; a pixel's replay uses the first render's options.
+        sed -e '1d' -e 's/^regions    /regions: /' \
+            -e "s|--trace - SCENE|--trace - -W 256 -H 256 $pg_options --seed 1 scenes/$pg_base.scene|" \
+            -e 's/^/        /' "$work/verdict"
         echo "        $out/$pg_name.html"
     fi
 }

@@ -195,6 +195,37 @@ put_failing(FILE *f, const struct comparison *c)
     fputs(".</p>\n", f);
 }
 
+/* --regions: a row per region of the reference scene's feature pass. */
+static void
+put_regions(FILE *f, const struct comparison *c)
+{
+    const struct region_report *rep = c->regions;
+    if (!rep) {
+        return;
+    }
+    fputs(
+        "<h2>By region</h2>\n<p class=\"note\">Each pixel's region is what the reference scene shows "
+        "there (its feature pass: render --aov feature).  Replay a pixel of a biased region with "
+        "render --pixel X,Y --trace - and the options of the render.</p>\n<table>\n",
+        f);
+    for (int i = 0; i < rep->n_regions; i++) {
+        const struct region_result *r = &rep->regions[i];
+        char name[32], line[512];
+        regions_describe(line, sizeof line, r, rep->noise);
+        fprintf(
+            f,
+            "<tr><th>%s</th><td>%zu pixels: ",
+            regions_label_name(r->label, name, sizeof name),
+            r->n_pixels);
+        put_escaped(f, line);
+        if (r->biased && r->pixel_x >= 0) {
+            fprintf(f, "; replay pixel %d,%d", r->pixel_x, r->pixel_y);
+        }
+        fputs("</td></tr>\n", f);
+    }
+    fputs("</table>\n", f);
+}
+
 static const char how_to_read[] =
     "<h2>How to read this page</h2>\n"
     "<p class=\"note\">The error map shows each pixel's signed relative error of luminance: blue where the "
@@ -241,6 +272,7 @@ write_page(FILE *f, const struct comparison *c, unsigned char *const png[3], con
         "</figure></div>\n",
         f);
     put_numbers(f, c);
+    put_regions(f, c);
     put_failing(f, c);
     fputs(how_to_read, f);
     fprintf(f, "<script>\n%s</script>\n</body>\n</html>\n", script);

@@ -11,6 +11,7 @@
 #include "diag.h"
 #include "image.h"
 #include "metrics.h"
+#include "regions.h"
 
 /* Exit statuses: the images agree, the render is biased, bad input. */
 enum compare_status {
@@ -57,6 +58,8 @@ struct comparison {
     int worst; /* the block whose luminance is furthest off, relatively */
     double worst_error; /* its signed relative error */
     double map_range; /* the error map's scale, +-map_range */
+
+    const struct region_report *regions; /* --regions (regions.h); NULL: none */
 
     enum compare_status status;
     char verdict[256]; /* one line: "consistent with ..." or "biased: ..." */

@@ -41,6 +41,8 @@ struct args {
     bool quiet;
     bool ref_se_given;
     bool smooth_mask;
+    const char *regions_path; /* --regions: the reference's feature pass */
+    struct region_report regions;
 };
 
 static const char usage_line[] = "usage: compare [options] RENDER [RENDER2 ...] REFERENCE\n";
@@ -81,11 +83,18 @@ usage(FILE *f)
         "  --mask smooth       with one render alone: compare only the reference's\n"
         "                      smooth pixels (3x3 luminance within 5%, no border):\n"
         "                      for stages without anti-aliasing, whose edges differ\n"
-        "  -q, --quiet         print only the verdict\n"
+        "  --regions FILE.pfm  break the error down by region: FILE is the reference\n"
+        "                      scene's feature pass (render --aov feature, docs/aov.md);\n"
+        "                      each region is t-tested as a whole and per block (one\n"
+        "                      Sidak-corrected family with the rest), or, with one\n"
+        "                      render alone, held against --max-relmse; a line per\n"
+        "                      region, with a pixel of it to replay with --pixel\n"
+        "  -q, --quiet         print only the verdict (and the regions' lines)\n"
         "  -h, --help          this text\n"
         "\n"
         "Exit status: 0 the images agree (or, one render alone, were compared),\n"
-        "1 biased (or relMSE above --max-relmse, or NaN/Inf pixels), 2 bad input.\n",
+        "1 biased (or relMSE above --max-relmse, or NaN/Inf pixels, or a region\n"
+        "biased), 2 bad input.\n",
         f);
 }
 
@@ -130,6 +139,8 @@ parse_valued(struct args *a, const char *name, const char *value)
             return false;
         }
         a->smooth_mask = true;
+    } else if (strcmp(name, "--regions") == 0) {
+        a->regions_path = value;
     } else if (strcmp(name, "--variance-dof") == 0) {
         return parse_number(name, value, 0, 1e9, &c->pixel_dof);
     } else if (strcmp(name, "--block") == 0) {
@@ -172,6 +183,7 @@ takes_value(const char *s)
         "--html",
         "--title",
         "--mask",
+        "--regions",
         "--max-relmse"};
     for (size_t i = 0; i < sizeof valued / sizeof valued[0]; i++) {
         if (strcmp(s, valued[i]) == 0) {
@@ -649,6 +661,77 @@ draw_map(const struct comparison *c, double range, struct image *map, struct dia
     return ok;
 }
 
+/* --regions: the error of each region of the feature pass. */
+static bool
+compare_regions(struct args *a, struct diag *err)
+{
+    struct comparison *c = &a->c;
+    struct image labels = {0};
+    if (!imgread(a->regions_path, &labels, err)) {
+        return false;
+    }
+    const struct region_inputs in = {
+        .render = &c->render,
+        .variance = &c->variance,
+        .pixel_dof = c->pixel_dof,
+        .reference = &c->reference,
+        .ref_rel_se = c->ref_rel_se,
+        .ref_dof = c->ref_dof,
+        .labels = &labels,
+        .mask = c->mask,
+        .block_size = c->block_size,
+        .alpha = c->alpha,
+        .max_relmse = c->max_relmse,
+    };
+    bool ok = regions_compare(&in, &a->regions, err);
+    regions_sort(&a->regions);
+    c->regions = ok ? &a->regions : NULL;
+    if (!ok) {
+        char why[sizeof err->msg];
+        snprintf(why, sizeof why, "%s", err->msg);
+        diag_set(err, a->regions_path, 0, 0, "--regions: %s", why);
+    }
+    image_free(&labels);
+    return ok;
+}
+
+/* One line per region, the biased ones first (most significant first),
+ * each with a pixel to replay. */
+static void
+print_regions(const struct args *a)
+{
+    const struct region_report *rep = &a->regions;
+    int biased = 0;
+    for (int i = 0; i < rep->n_regions; i++) {
+        biased += rep->regions[i].biased;
+    }
+    printf(
+        "regions    %d of %d biased, by the reference's feature pass %s (%s)\n",
+        biased,
+        rep->n_regions,
+        a->regions_path,
+        rep->noise ? "t-tests of each region and of its part in each block" : "relMSE per region");
+    for (int i = 0; i < rep->n_regions; i++) {
+        const struct region_result *r = &rep->regions[i];
+        char name[32], line[512];
+        regions_describe(line, sizeof line, r, rep->noise);
+        printf(
+            "  %-12s %7zu px: %s\n",
+            regions_label_name(r->label, name, sizeof name),
+            r->n_pixels,
+            line);
+        if (r->biased && r->pixel_x >= 0) {
+            printf(
+                "  %-12s replay pixel %d,%d: render --pixel %d,%d --trace - SCENE\n",
+                "",
+                r->pixel_x,
+                r->pixel_y,
+                r->pixel_x,
+                r->pixel_y);
+        }
+    }
+}
+
 static bool
 run(struct args *a, struct diag *err)
 {
@@ -669,6 +752,9 @@ run(struct args *a, struct diag *err)
         return false;
     }
     if (c->noise != NOISE_NONE && !test_blocks(c, err)) {
+        return false;
+    }
+    if (a->regions_path && !compare_regions(a, err)) {
         return false;
     }
     find_worst(c);
@@ -721,6 +807,12 @@ main(int argc, char **argv)
         print_text(&a.c);
     }
     status = a.c.status;
+    if (a.regions_path) {
+        print_regions(&a);
+        for (int i = 0; i < a.regions.n_regions; i++) {
+            status = a.regions.regions[i].biased ? COMPARE_BIASED : status;
+        }
+    }
     release(&a.c);
     return fflush(stdout) == 0 && !ferror(stdout) ? status : COMPARE_BAD_INPUT;
 }

@@ -1,0 +1,201 @@
+#!/bin/sh
+# check-planted.sh - the per-region grade names the region of a planted bug.
+#
+#   check-planted.sh [--help] [--verbose]     (part of make test)
+#
+# Copies a stage, plants one bug in the copy (a sed of one line, checked to
+# have changed the file), builds it against the project's common core, and
+# compares its renders with a reference by region (compare --regions with
+# the scene's feature pass, docs/aov.md), as make grade does:
+#   missing-cosine   07 light.c: a shadow ray's estimate (NEE) without the
+#                    receiver's cosine; Mitsuba's cornell_diffuse_area_gi:
+#                    diffuse-lit
+#   mirror-pdf       07 bsdf.c: the mirror lobe's weight halved (its pdf
+#                    counted twice); Mitsuba's cornell_specular_area_gi: mirror
+#   shadow-leak      02 geometry.c: shadow rays start 0.2 along their way,
+#                    past blockers near the surface; the point-lit Cornell
+#                    box with a low shelf (the light leaks under it)
+#                    against the correct stage: umbra
+#   no-tir           04 optics.c: the Fresnel reflectance 0, not 1, past
+#                    the critical angle (total internal reflection
+#                    ignored: the light goes to a refraction that does not
+#                    exist); a glass cube in the point-lit box against the
+#                    correct stage: glass
+# The grade must list the expected region first among the biased ones; and
+# the correct stage 07, rendered the same way, must have no biased region.
+# The stages 02 and 04 are deterministic, so their reference is the correct
+# stage's render (exact); stage 07 uses two renders of 64 spp with seeds 1
+# and 2 against the Mitsuba references, as make grade does (block and region t-tests,
+# Sidak-corrected at 0.01): fixed seeds, so the outcome is the same on
+# every run.  Builds the project first (make, a no-op when it is built).
+# Cost: about 40 s of processor time (four stage copies built, twelve
+# renders of 07 at 64 spp, 256x256).
+# Prints one result line per check (--verbose: and every grade) and
+# "N passed, N failed, N skipped".
+# Exit status: 0 every check passed, 1 a check failed, 2 usage.
+set -eu
+
+PROG=check-planted.sh
+LAB_DIR=$(cd "$(dirname "$0")" && pwd)
+. "$LAB_DIR/lablib.sh"
+
+verbose=0
+case ${1:-} in
+    -h | --help) show_help "$0"; exit 0 ;;
+    --verbose) verbose=1; shift ;;
+esac
+[ $# -eq 0 ] || usage_error "unexpected argument: $1"
+root=$(cd "$LAB_DIR/../.." && pwd)
+build=$root/build
+compare=$build/tools/compare
+refs=$root/tests/reference
+work=$(mktemp -d "${TMPDIR:-/tmp}/planted.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+trap 'exit 1' HUP INT TERM
+# The plain build (a make sanitize run passes its variables in MAKEFLAGS:
+# none of them here, where the copies link build/common).
+MAKEFLAGS= ${MAKE:-make} --no-print-directory -C "$root" all >"$work/log" 2>&1 ||
+    die "the project does not build: $(tail -n 5 "$work/log")"
+
+passed=0
+failed=0
+pass() {
+    echo "ok   planted/$1"
+    passed=$((passed + 1))
+}
+fail() {
+    echo "FAIL planted/$1: $2"
+    [ -f "$work/log" ] && sed 's/^/    /' "$work/log"
+    failed=$((failed + 1))
+}
+
+# plant NAME STAGE FILE SED-ARGS...: the stage's copy with the bug, built
+# into $work/NAME/build/STAGE/render against the project's common core
+# (the copy's build/common is the project's, already built).
+plant() {
+    pl_tree=$work/$1
+    pl_stage=$2
+    pl_file=$3
+    shift 3
+    mkdir -p "$pl_tree/stages" "$pl_tree/build"
+    ln -s "$root/common" "$pl_tree/common"
+    ln -s "$build/common" "$pl_tree/build/common"
+    cp -R "$root/stages/$pl_stage" "$pl_tree/stages/$pl_stage"
+    sed "$@" "$root/stages/$pl_stage/$pl_file" >"$pl_tree/stages/$pl_stage/$pl_file"
+    if cmp -s "$root/stages/$pl_stage/$pl_file" "$pl_tree/stages/$pl_stage/$pl_file"; then
+        echo "the planted change to stages/$pl_stage/$pl_file matches nothing (the source changed?)" \
+            >"$work/log"
+        return 1
+    fi
+    MAKEFLAGS= ${MAKE:-make} --no-print-directory -C "$pl_tree/stages/$pl_stage" >"$work/log" 2>&1
+}
+
+# renders PROGRAM SCENE OUT OPTIONS...: OUT.1.pfm and OUT.2.pfm, seeds 1
+# and 2, at the references' size.
+renders() {
+    rn_prog=$1
+    rn_scene=$2
+    rn_out=$3
+    shift 3
+    for rn_seed in 1 2; do
+        "$rn_prog" -q -t 2 -W 256 -H 256 --seed "$rn_seed" "$@" -o "$rn_out.$rn_seed.pfm" \
+            "$rn_scene" >>"$work/log" 2>&1 || return 1
+    done
+}
+
+# expect NAME REGION: the grade in $work/grade lists REGION first among
+# the biased regions ("none": no region is biased).
+expect() {
+    ex_first=$(sed -n 's/^  \([a-z-]*\) *[0-9]* px: .*: biased$/\1/p' "$work/grade" | head -n 1)
+    cp "$work/grade" "$work/log"
+    [ "$verbose" -eq 0 ] || sed "s|^|    $1: |" "$work/grade"
+    if [ "$2" = none ]; then
+        if [ -z "$ex_first" ] && grep -q '^regions    0 of' "$work/grade"; then
+            pass "$1"
+        else
+            fail "$1" "a region is biased in the correct stage"
+        fi
+    elif [ "$ex_first" = "$2" ]; then
+        pass "$1"
+    else
+        fail "$1" "the grade names '${ex_first:-no region}', not '$2'"
+    fi
+}
+
+# grade_07 NAME RENDER SCENE REGION: two renders against the Mitsuba
+# reference SCENE_gi, by region.
+grade_07() {
+    if renders "$2" "$root/scenes/$3.scene" "$work/$1" --spp 64; then
+        "$compare" -q --regions "$refs/$3.feature.pfm" "$work/$1.1.pfm" "$work/$1.2.pfm" \
+            "$refs/${3}_gi.pfm" >"$work/grade" 2>&1 || true
+        expect "$1" "$4"
+    else
+        fail "$1" "the render failed"
+    fi
+}
+
+# grade_exact NAME STAGE RENDER SCENE REGION: two renders of a planted
+# deterministic stage against the correct stage's render, taken as exact.
+grade_exact() {
+    ge_correct=$build/$2/render
+    if renders "$3" "$4" "$work/$1" && "$ge_correct" -q -W 256 -H 256 -o "$work/$1.ref.pfm" "$4" \
+        >>"$work/log" 2>&1 && "$build/07_pathtrace/render" -q -s 1 -W 256 -H 256 --aov feature \
+        -o "$work/$1.mask.pfm" "$4" >>"$work/log" 2>&1; then
+        "$compare" -q --ref-rel-se 0 --ref-dof 0 --regions "$work/$1.mask.feature.pfm" \
+            "$work/$1.1.pfm" "$work/$1.2.pfm" "$work/$1.ref.pfm" >"$work/grade" 2>&1 || true
+        expect "$1" "$5"
+    else
+        fail "$1" "a render failed"
+    fi
+}
+
+# The correct stage 07 names no region.
+grade_07 correct-07-diffuse "$build/07_pathtrace/render" cornell_diffuse_area none
+grade_07 correct-07-specular "$build/07_pathtrace/render" cornell_specular_area none
+
+if plant missing-cosine 07_pathtrace light.c -e \
+    's|vec3_scale(radiance, cos_surface \* weight / pdf)|vec3_scale(radiance, weight / pdf)|'; then
+    grade_07 missing-cosine "$work/missing-cosine/build/07_pathtrace/render" cornell_diffuse_area diffuse-lit
+else
+    fail missing-cosine "the planted stage does not build"
+fi
+
+if plant mirror-pdf 07_pathtrace bsdf.c -e \
+    's|vec3_scale(mirror, p_total / p_mirror)|vec3_scale(mirror, p_total / (2 * p_mirror))|'; then
+    grade_07 mirror-pdf "$work/mirror-pdf/build/07_pathtrace/render" cornell_specular_area mirror
+else
+    fail mirror-pdf "the planted stage does not build"
+fi
+
+if plant shadow-leak 02_shadows geometry.c -e \
+    's|^\( *\)ray r = spawn_ray(h, vec3_normalize(vec3_sub(to, h->p)));|&\n\1r.o = vec3_madd(r.o, r.d, (real)0.2);|'; then
+    # A shelf 0.1 above the floor.
+    sed -e '/^sphere /d' "$root/scenes/cornell_diffuse_point.scene" >"$work/shelf.scene"
+    echo 'quad corner -0.5 0.1 -0.4 edge1 0 0 0.6 edge2 0.8 0 0 material white' >>"$work/shelf.scene"
+    grade_exact shadow-leak 02_shadows "$work/shadow-leak/build/02_shadows/render" \
+        "$work/shelf.scene" umbra
+else
+    fail shadow-leak "the planted stage does not build"
+fi
+
+# A glass cube (six quads, normals outward) in the point-lit Cornell box:
+# rays entering its top meet its sides beyond the critical angle.
+sed -e '/^sphere /d' "$root/scenes/cornell_diffuse_point.scene" >"$work/glass_cube.scene"
+cat >>"$work/glass_cube.scene" <<'EOF'
+material glass glass ior 1.5
+quad corner 0 0.1 0.3 edge1 0.5 0 0 edge2 0 0.5 0 material glass
+quad corner 0 0.1 -0.2 edge1 0 0.5 0 edge2 0.5 0 0 material glass
+quad corner 0.5 0.1 -0.2 edge1 0 0.5 0 edge2 0 0 0.5 material glass
+quad corner 0 0.1 -0.2 edge1 0 0 0.5 edge2 0 0.5 0 material glass
+quad corner 0 0.6 -0.2 edge1 0 0 0.5 edge2 0.5 0 0 material glass
+quad corner 0 0.1 -0.2 edge1 0.5 0 0 edge2 0 0 0.5 material glass
+EOF
+if plant no-tir 04_reflect_refract optics.c -e 's|^\( *\)return 1;$|\1return 0;|'; then
+    grade_exact no-tir 04_reflect_refract "$work/no-tir/build/04_reflect_refract/render" \
+        "$work/glass_cube.scene" glass
+else
+    fail no-tir "the planted stage does not build"
+fi
+
+echo "$passed passed, $failed failed, 0 skipped"
+[ "$failed" -eq 0 ]
