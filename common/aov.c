@@ -24,6 +24,8 @@ const char *const aov_pass_names[AOV_COUNT] = {
     "feature",
 };
 
+const char *const aov_exr_channels[AOV_COUNT] = {"Z", "XYZ", "RGB", "X", "X", "X"};
+
 const char *const aov_label_names[LABEL_COUNT] = {
     "background",
     "diffuse-lit",
@@ -75,6 +77,12 @@ aov_parse_list(const char *text, unsigned *passes, struct diag *err)
         }
         p += len + 1;
     }
+}
+
+bool
+aov_as_layers(const char *image_path)
+{
+    return image_format_from_path(image_path) == IMAGE_FORMAT_EXR;
 }
 
 bool

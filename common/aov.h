@@ -37,6 +37,10 @@ enum aov_pass {
 /* The pass names of --aov, indexed by enum aov_pass. */
 extern const char *const aov_pass_names[AOV_COUNT];
 
+/* The channels of each pass as a layer of an OpenEXR image ("depth.Z",
+ * "normal.X"..., "albedo.R"..., "id.X", "material.X", "feature.X"). */
+extern const char *const aov_exr_channels[AOV_COUNT];
+
 /* ORDER AOV_LABEL: what a pixel of the feature pass shows (its value is the
  * number); append only, the references' masks store these numbers. */
 enum aov_label {
@@ -75,6 +79,10 @@ struct aov_source {
 /* Parse a comma-separated list of pass names into a bit set (bit
  * 1u << pass).  An unknown or empty name is an error naming every pass. */
 bool aov_parse_list(const char *text, unsigned *passes, struct diag *err);
+
+/* Whether the passes of an image written to image_path are layers of it
+ * (an .exr image) rather than files beside it. */
+bool aov_as_layers(const char *image_path);
 
 /* The file a pass goes to when it is not a layer of an EXR image: the
  * image's path without its extension, then ".PASS.pfm" (out.png gives

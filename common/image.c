@@ -155,10 +155,13 @@ encode_stdio(
     return s.error ? write_failed(path, s.error, err) : true;
 }
 
-/* Encode img into f, the temporary file (OpenEXR writes to its descriptor). */
+/* Encode img and its layers into f, the temporary file (OpenEXR writes to
+ * its descriptor). */
 static bool
 encode(
     const struct image *img,
+    const struct image_layer *layers,
+    int n_layers,
     enum image_format format,
     FILE *f,
     const char *path,
@@ -166,9 +169,14 @@ encode(
 {
 #ifdef HAVE_OPENEXR
     if (format == IMAGE_FORMAT_EXR) {
-        return image_exr_write(img, fileno(f), path, err);
+        return image_exr_write_layers(img, layers, n_layers, fileno(f), path, err);
     }
 #endif
+    if (n_layers > 0) {
+        diag_set(err, path, 0, 0, "only an OpenEXR file holds layers");
+        return false;
+    }
+    (void)layers;
     return encode_stdio(img, format, f, path, err);
 }
 
@@ -200,10 +208,22 @@ check_format(enum image_format format, const char *path, struct diag *err)
 /* The temporary file is renamed over path, so a symbolic link at path is
  * replaced by the new file rather than followed. */
 bool
-image_write_to(const struct image *img, struct atomic_file *af, struct diag *err)
+image_write_layers_to(
+    const struct image *img,
+    const struct image_layer *layers,
+    int n_layers,
+    struct atomic_file *af,
+    struct diag *err)
 {
     enum image_format format = image_format_from_path(af->path);
-    return check_format(format, af->path, err) && encode(img, format, af->f, af->path, err);
+    return check_format(format, af->path, err)
+           && encode(img, layers, n_layers, format, af->f, af->path, err);
+}
+
+bool
+image_write_to(const struct image *img, struct atomic_file *af, struct diag *err)
+{
+    return image_write_layers_to(img, NULL, 0, af, err);
 }
 
 bool

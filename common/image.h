@@ -68,6 +68,24 @@ struct atomic_file;
  * several outputs can be put in place together. */
 bool image_write_to(const struct image *img, struct atomic_file *af, struct diag *err);
 
+/* A layer of an OpenEXR file beside the image's R, G and B: the channels
+ * "NAME.C" for each letter C of `channels`, taken from img's channels in
+ * order ("Z": one channel, from img's first; "XYZ": three). */
+struct image_layer {
+    const char *name;
+    const char *channels;
+    const struct image *img; /* the size of the image it goes with */
+};
+
+/* image_write_to with n_layers more layers (an .exr file only: any other
+ * format refuses layers). */
+bool image_write_layers_to(
+    const struct image *img,
+    const struct image_layer *layers,
+    int n_layers,
+    struct atomic_file *af,
+    struct diag *err);
+
 /* Read a PFM (colour "PF" or greyscale "Pf", either byte order) into a
  * freshly allocated RGB image (greyscale is copied to all three channels). */
 bool image_read_pfm(const char *path, struct image *out, struct diag *err);

@@ -16,4 +16,14 @@
  * caller closes.  path names the file in messages only. */
 bool image_exr_write(const struct image *img, int fd, const char *path, struct diag *err);
 
+/* The same with more layers (image.h), each a set of 32-bit float
+ * channels named "LAYER.C" in the same part. */
+bool image_exr_write_layers(
+    const struct image *img,
+    const struct image_layer *layers,
+    int n_layers,
+    int fd,
+    const char *path,
+    struct diag *err);
+
 #endif /* IMAGE_EXR_H */

@@ -83,7 +83,7 @@ collect_outputs(struct run *run, struct diag *err)
     add_output(run, "--trace", run->opt.trace_path);
     add_output(run, "--trace-svg", run->opt.trace_svg_path);
     for (int pass = 0; pass < AOV_COUNT; pass++) {
-        if (!(run->opt.aov & (1u << pass))) {
+        if (!(run->opt.aov & (1u << pass)) || aov_as_layers(run->output)) {
             continue;
         }
         char *path = run->aov_paths[pass];
@@ -208,6 +208,12 @@ check_memory(const struct run *run, struct diag *err)
     uint64_t primitives = (uint64_t)s->n_spheres + (uint64_t)s->n_quads + (uint64_t)s->n_triangles
                           + (uint64_t)s->n_area_lights;
     uint64_t image = render_job_bytes(&job);
+    /* --aov: an image per pass, and the driver's buffers of their job. */
+    uint64_t pixels = (uint64_t)job.width * (uint64_t)job.height;
+    for (int pass = 0; pass < AOV_COUNT; pass++) {
+        image += run->opt.aov & (1u << pass) ? pixels * 3 * sizeof(float) : 0;
+    }
+    image += run->opt.aov ? render_job_bytes(&job) : 0;
     uint64_t accel = primitives * ACCEL_BYTES_PER_PRIMITIVE;
     uint64_t total = scene_bytes(s) + accel + image;
     if (total <= memory_limit(run)) {
@@ -383,6 +389,31 @@ output_image(const struct run *run, int i, const struct image *image, const stru
     return NULL;
 }
 
+/* Write an image; the image itself, when its format is EXR, with the
+ * passes as its layers. */
+static bool
+write_image(
+    const struct run *run,
+    const struct image *img,
+    const struct image *passes,
+    struct atomic_file *af,
+    struct diag *err)
+{
+    struct image_layer layers[AOV_COUNT];
+    int n = 0;
+    bool is_render = af->path == run->output; /* atomic_file_open keeps the pointer */
+    for (int pass = 0; pass < AOV_COUNT && is_render; pass++) {
+        if ((run->opt.aov & (1u << pass)) && aov_as_layers(run->output)) {
+            layers[n++] = (struct image_layer){
+                aov_pass_names[pass],
+                aov_exr_channels[pass],
+                &passes[pass],
+            };
+        }
+    }
+    return image_write_layers_to(img, layers, n, af, err);
+}
+
 /* Whether a trace file is asked for as JSON (by its extension). */
 static bool
 is_json(const char *path)
@@ -461,7 +492,7 @@ write_outputs(
         }
         n++;
         const struct image *img = output_image(run, i, image, passes);
-        bool written = img ? image_write_to(img, &files[n - 1], &err)
+        bool written = img ? write_image(run, img, passes, &files[n - 1], &err)
                            : write_one(run, path, files[n - 1].f, image, trace, &err);
         if (!written) {
             return abandon(files, n, &err);

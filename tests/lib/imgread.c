@@ -12,7 +12,7 @@
 #include <string.h>
 
 #ifdef HAVE_OPENEXR
-bool imgread_exr(const char *path, struct image *out, struct diag *err);
+bool imgread_exr_layer(const char *path, const char *layer, struct image *out, struct diag *err);
 #endif
 
 /* ---- inflate (RFC 1951) --------------------------------------------------- */
@@ -537,6 +537,25 @@ read_whole(const char *path, size_t limit, size_t *n, struct diag *err)
     return buf;
 }
 
+/* An OpenEXR file's R, G, B (layer NULL) or one layer's channels. */
+static bool
+read_exr(const char *path, const char *layer, struct image *out, struct diag *err)
+{
+#ifdef HAVE_OPENEXR
+    return imgread_exr_layer(path, layer, out, err);
+#else
+    (void)layer;
+    (void)out;
+    diag_set(
+        err,
+        path,
+        0,
+        0,
+        "this build has no OpenEXR (apt-get install libopenexr-dev, then make)");
+    return false;
+#endif
+}
+
 bool
 imgread(const char *path, struct image *out, struct diag *err)
 {
@@ -545,17 +564,7 @@ imgread(const char *path, struct image *out, struct diag *err)
     case IMAGE_FORMAT_PFM:
         return image_read_pfm(path, out, err);
     case IMAGE_FORMAT_EXR:
-#ifdef HAVE_OPENEXR
-        return imgread_exr(path, out, err);
-#else
-        diag_set(
-            err,
-            path,
-            0,
-            0,
-            "this build has no OpenEXR (apt-get install libopenexr-dev, then make)");
-        return false;
-#endif
+        return read_exr(path, NULL, out, err);
     case IMAGE_FORMAT_PNG: {
         size_t n = 0;
         /* A PNG this size inflates to more than IMAGE_MAX_DIM^2 pixels. */
@@ -568,4 +577,15 @@ imgread(const char *path, struct image *out, struct diag *err)
         diag_set(err, path, 0, 0, "unknown image format (expected .pfm, .exr or .png)");
         return false;
     }
+}
+
+bool
+imgread_layer(const char *path, const char *layer, struct image *out, struct diag *err)
+{
+    *out = (struct image){0};
+    if (image_format_from_path(path) != IMAGE_FORMAT_EXR) {
+        diag_set(err, path, 0, 0, "only an OpenEXR file has layers (here: %s)", layer);
+        return false;
+    }
+    return read_exr(path, layer, out, err);
 }

@@ -20,6 +20,12 @@
 /* Read path in the format its extension names (.pfm, .exr, .png). */
 bool imgread(const char *path, struct image *out, struct diag *err);
 
+/* Read one layer of an OpenEXR file (a render pass written with --aov,
+ * docs/aov.md: "depth", "normal", "feature"...): its channels LAYER.C as
+ * R, G, B, or its one channel in all three.  False (diag) for another
+ * format, a build without OpenEXR, or a file without that layer. */
+bool imgread_layer(const char *path, const char *layer, struct image *out, struct diag *err);
+
 /* Decode a PNG held in memory (n bytes); path names it in messages. */
 bool imgread_png_memory(
     const unsigned char *data,

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "imgread.h"
 #include "stagecheck.h"
 #include "testlib.h"
 
@@ -357,6 +358,80 @@ TEST(passes_do_not_depend_on_the_thread_count_and_cost_nothing_unasked)
     CHECK(test_count_files(test_tmpdir(), ".stagelight-") == 0);
 }
 
+/* The memory estimate of --max-memory counts the passes: a refused
+ * 2000x2000 render says it needs at least the six passes' 12 bytes per
+ * pixel more with --aov than without. */
+static double
+estimated_mib(const char *scene, const char *aov)
+{
+    const char *args[] = {
+        "-W",
+        "2000",
+        "-H",
+        "2000",
+        "--max-memory",
+        "1",
+        "-o",
+        test_tmp_path("big.png"),
+        aov ? "--aov" : NULL,
+        aov,
+        NULL};
+    char log[4096];
+    double mib = -1;
+    const char *about =
+        test_render(scene, args, log, sizeof log) == 1 ? strstr(log, "about ") : NULL;
+    return about && sscanf(about, "about %lf MiB", &mib) == 1 ? mib : -1;
+}
+
+TEST(the_memory_estimate_counts_the_passes)
+{
+    const char *scene = two_spheres();
+    double plain = scene ? estimated_mib(scene, NULL) : -1;
+    double with = scene ? estimated_mib(scene, "depth,normal,albedo,id,material,feature") : -1;
+    CHECK_MSG(
+        plain > 0 && with - plain >= 6 * 12 * 4e6 / (1 << 20) - 1,
+        "%g MiB, %g MiB with --aov",
+        plain,
+        with);
+    CHECK(!test_file_exists(test_tmp_path("big.png")));
+}
+
+/* An .exr image holds the passes as its layers (depth.Z, normal.X/Y/Z,
+ * feature.X), the same numbers as the .pfm files beside a .png, and no
+ * file is written beside it. */
+TEST(an_exr_image_holds_the_passes_as_layers)
+{
+    if (!image_exr_available()) {
+        SKIP("built without OpenEXR");
+    }
+    const char *scene = two_spheres();
+    const char *png =
+        scene ? render_passes(scene, "layers.png", "depth,normal,feature", "2") : NULL;
+    const char *exr =
+        scene ? render_passes(scene, "layers.exr", "depth,normal,feature", "2") : NULL;
+    CHECK(png && exr);
+    if (!png || !exr) {
+        return;
+    }
+    CHECK(test_count_files(test_tmpdir(), "layers.") == 5); /* layers.exr, layers.png, 3 .pfm */
+    const char *passes[] = {"depth", "normal", "feature"};
+    for (int i = 0; i < 3; i++) {
+        struct image file = {0}, layer = {0};
+        struct diag err;
+        CHECK(read_pass(png, passes[i], &file));
+        CHECK_MSG(imgread_layer(exr, passes[i], &layer, &err), "%s", err.msg);
+        size_t n = (size_t)W * H * 3;
+        CHECK(
+            file.rgb && layer.rgb && layer.width == W && layer.height == H
+            && memcmp(file.rgb, layer.rgb, n * sizeof(float)) == 0);
+        image_free(&file);
+        image_free(&layer);
+    }
+    struct image none = {0};
+    struct diag err;
+    CHECK(!imgread_layer(exr, "albedo", &none, &err));
+}
+
 TEST_MAIN(
     TEST_ENTRY(depth_of_a_plane_at_a_known_distance),
     TEST_ENTRY(normal_albedo_id_and_material_of_two_spheres),
@@ -364,4 +439,6 @@ TEST_MAIN(
     TEST_ENTRY(glass_casts_a_caustic_and_specular_surfaces_are_named),
     TEST_ENTRY(an_unknown_pass_is_refused_with_the_list_of_passes),
     TEST_ENTRY(a_pass_that_would_overwrite_another_output_is_refused),
-    TEST_ENTRY(passes_do_not_depend_on_the_thread_count_and_cost_nothing_unasked))
+    TEST_ENTRY(passes_do_not_depend_on_the_thread_count_and_cost_nothing_unasked),
+    TEST_ENTRY(an_exr_image_holds_the_passes_as_layers),
+    TEST_ENTRY(the_memory_estimate_counts_the_passes))

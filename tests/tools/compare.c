@@ -83,8 +83,9 @@ usage(FILE *f)
         "  --mask smooth       with one render alone: compare only the reference's\n"
         "                      smooth pixels (3x3 luminance within 5%, no border):\n"
         "                      for stages without anti-aliasing, whose edges differ\n"
-        "  --regions FILE.pfm  break the error down by region: FILE is the reference\n"
-        "                      scene's feature pass (render --aov feature, docs/aov.md);\n"
+        "  --regions FILE      break the error down by region: FILE is the reference\n"
+        "                      scene's feature pass (render --aov feature, docs/aov.md:\n"
+        "                      a .pfm, or an .exr holding it as its layer 'feature');\n"
         "                      each region is t-tested as a whole and per block (one\n"
         "                      Sidak-corrected family with the rest), or, with one\n"
         "                      render alone, held against --max-relmse; a line per\n"
@@ -667,7 +668,10 @@ compare_regions(struct args *a, struct diag *err)
 {
     struct comparison *c = &a->c;
     struct image labels = {0};
-    if (!imgread(a->regions_path, &labels, err)) {
+    /* An EXR written with --aov holds the pass as its layer "feature". */
+    bool layered = image_format_from_path(a->regions_path) == IMAGE_FORMAT_EXR;
+    if (!(layered ? imgread_layer(a->regions_path, "feature", &labels, err)
+                  : imgread(a->regions_path, &labels, err))) {
         return false;
     }
     const struct region_inputs in = {
