@@ -109,6 +109,11 @@ struct gltf_mesh {
     size_t n_cameras;
     struct gltf_light *lights;
     size_t n_lights;
+    /* The other files the load read (external buffers, and images, read
+     * though never decoded), each once, as opened: the model's directory
+     * joined to the URI.  They are inputs of a render as the model is. */
+    char **files;
+    size_t n_files;
 };
 
 /* True when built with tinygltf. */

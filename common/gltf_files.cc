@@ -189,6 +189,7 @@ guarded_read_file(
         why = "it is outside the model's directory";
     } else if (read_file(path, guard->budget, out, &why)) {
         guard->budget -= out->size();
+        guard->read.push_back(path);
         return true;
     }
     refuse(guard, uri, "cannot be read: " + why);

@@ -42,9 +42,11 @@
  */
 #include "gltf_shim.h"
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <new>
 
 std::string
@@ -58,6 +60,34 @@ format(const char *fmt, ...)
     return buf;
 }
 
+// The files the load read, each once, into out->files (malloc'd: the C
+// side frees them).
+static void
+copy_file_names(const std::vector<std::string> &read, struct gltf_mesh *out)
+{
+    std::vector<std::string> names;
+    for (const std::string &name : read) {
+        if (std::find(names.begin(), names.end(), name) == names.end()) {
+            names.push_back(name);
+        }
+    }
+    if (names.empty()) {
+        return;
+    }
+    out->files = static_cast<char **>(calloc(names.size(), sizeof *out->files));
+    if (!out->files) {
+        throw out_of_memory{format("out of memory for the names of %zu files", names.size())};
+    }
+    for (const std::string &name : names) {
+        char *copy = static_cast<char *>(malloc(name.size() + 1));
+        if (!copy) {
+            throw out_of_memory{format("out of memory for the names of %zu files", names.size())};
+        }
+        memcpy(copy, name.c_str(), name.size() + 1);
+        out->files[out->n_files++] = copy;
+    }
+}
+
 static bool
 load(const char *path, uint64_t max_bytes, struct gltf_mesh *out, std::string *why)
 {
@@ -66,11 +96,15 @@ load(const char *path, uint64_t max_bytes, struct gltf_mesh *out, std::string *w
     std::vector<job> jobs;
     std::vector<placed> cameras_and_lights;
     std::vector<part> parts;
-    return parse_model(path, max_bytes, &model, &guard, why)
-           && check_required_extensions(model, why)
-           && collect_jobs(model, &jobs, &cameras_and_lights, why)
-           && plan_parts(model, jobs, &parts, why) && copy_parts(jobs, parts, max_bytes, out, why)
-           && copy_materials(model, out, why) && copy_placed(model, cameras_and_lights, out, why);
+    bool ok =
+        parse_model(path, max_bytes, &model, &guard, why) && check_required_extensions(model, why)
+        && collect_jobs(model, &jobs, &cameras_and_lights, why)
+        && plan_parts(model, jobs, &parts, why) && copy_parts(jobs, parts, max_bytes, out, why)
+        && copy_materials(model, out, why) && copy_placed(model, cameras_and_lights, out, why);
+    if (ok) {
+        copy_file_names(guard.read, out);
+    }
+    return ok;
 }
 
 // Messages may quote the file's own strings: keep control bytes out of them.
@@ -140,5 +174,9 @@ gltf_free(struct gltf_mesh *mesh)
     free(mesh->materials);
     free(mesh->cameras);
     free(mesh->lights);
+    for (size_t i = 0; i < mesh->n_files; i++) {
+        free(mesh->files[i]);
+    }
+    free(mesh->files);
     *mesh = gltf_mesh{};
 }

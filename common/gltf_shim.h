@@ -22,13 +22,14 @@ extern "C" {
 }
 
 // The model's directory as tinygltf joins it to a URI, the bytes external
-// files may still take, and why the last one was refused (tinygltf only
-// says "File not found").
+// files may still take, why the last one was refused (tinygltf only says
+// "File not found"), and the files read.
 struct fs_guard {
     std::string prefix;
     size_t budget;
     std::string refused_uri;
     std::string refusal;
+    std::vector<std::string> read;  // every file read through the callbacks
 };
 
 // A 4x4 matrix, column-major as glTF stores it: m[column * 4 + row].

@@ -46,5 +46,9 @@ gltf_free(struct gltf_mesh *mesh)
     free(mesh->materials);
     free(mesh->cameras);
     free(mesh->lights);
+    for (size_t i = 0; i < mesh->n_files; i++) {
+        free(mesh->files[i]);
+    }
+    free(mesh->files);
     *mesh = (struct gltf_mesh){0};
 }

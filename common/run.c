@@ -148,13 +148,14 @@ report_unmodelled(const struct run *run, unsigned modelled)
     return !(run->opt.strict && n > 0);
 }
 
-/* The files the scene read besides itself are inputs too. */
+/* The files the scene read besides itself (meshes, their external buffers
+ * and images) are inputs too. */
 static bool
 check_mesh_files(struct run *run)
 {
     const struct scene *s = &run->scene;
     for (int i = 0; i < s->n_input_files; i++) {
-        const struct named_file mesh = {"the mesh", s->input_files[i]};
+        const struct named_file mesh = {"a file the scene reads,", s->input_files[i]};
         if (!check_identities(run, &mesh, 1)) {
             return false;
         }

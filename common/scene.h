@@ -161,7 +161,7 @@ struct scene {
     struct sphere_light *sphere_lights;
     int n_sphere_lights;
 
-    char **input_files; /* the files read besides the scene (meshes): no output may be one */
+    char **input_files; /* files read besides the scene (meshes, buffers, images) */
     int n_input_files;
 
     unsigned features; /* FEATURE_BIT(f) for each feature used */

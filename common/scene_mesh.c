@@ -250,6 +250,28 @@ mesh_path(struct parser *p, const struct token *t, char *name, char *path)
     return true;
 }
 
+/* Remember a file the scene read, so that the run can refuse to write
+ * over it (output_check.h). */
+static bool
+note_input_file(struct parser *p, const struct token *t, const char *path)
+{
+    struct scene *s = p->scene;
+    char **grown = realloc(s->input_files, (size_t)(s->n_input_files + 1) * sizeof *grown);
+    char *copy = malloc(strlen(path) + 1);
+    if (grown) {
+        s->input_files = grown;
+    }
+    if (!grown || !copy) {
+        free(copy);
+        fail(p, t, "out of memory for the name of '%s'", path);
+        diag_mark_no_memory(p->err);
+        return false;
+    }
+    memcpy(copy, path, strlen(path) + 1);
+    s->input_files[s->n_input_files++] = copy;
+    return true;
+}
+
 bool
 load_gltf_file(
     struct parser *p,
@@ -279,28 +301,13 @@ load_gltf_file(
         }
         return false;
     }
-    return true;
-}
-
-/* Remember a file the scene read, so that the run can refuse to write
- * over it (output_check.h). */
-static bool
-note_input_file(struct parser *p, const struct token *t, const char *path)
-{
-    struct scene *s = p->scene;
-    char **grown = realloc(s->input_files, (size_t)(s->n_input_files + 1) * sizeof *grown);
-    char *copy = malloc(strlen(path) + 1);
-    if (grown) {
-        s->input_files = grown;
+    /* Its external buffers (and images) are inputs as the file is. */
+    for (size_t i = 0; i < out->n_files; i++) {
+        if (!note_input_file(p, t, out->files[i])) {
+            gltf_free(out);
+            return false;
+        }
     }
-    if (!grown || !copy) {
-        free(copy);
-        fail(p, t, "out of memory for the name of '%s'", path);
-        diag_mark_no_memory(p->err);
-        return false;
-    }
-    memcpy(copy, path, strlen(path) + 1);
-    s->input_files[s->n_input_files++] = copy;
     return true;
 }
 

@@ -182,7 +182,9 @@ bool map_file_materials(
     const struct gltf_mesh *mesh,
     struct file_surface **out);
 
-/* Load the glTF file at path (named `name` in messages) into *out. */
+/* Load the glTF file at path (named `name` in messages) into *out; the
+ * files the load read besides it (external buffers, images) join the
+ * scene's input_files. */
 bool load_gltf_file(
     struct parser *p,
     const struct token *at,

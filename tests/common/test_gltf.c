@@ -1448,6 +1448,9 @@ TEST(external_buffers_inside)
         struct gltf_mesh m = {0};
         CHECK_MSG(load(gltf_with_uri(uris[i]), &m), "uri %s", uris[i]);
         CHECK(m.n_triangles == 1);
+        // The buffer is named among the files read (an input of a render).
+        const char *bin = strstr(uris[i], "sub/") ? "/sub/tri 2.bin" : "tri.bin";
+        CHECK_MSG(m.n_files == 1 && strstr(m.files[0], bin), "uri %s", uris[i]);
         gltf_free(&m);
     }
     // A bare file name: the model's directory is the working directory.

@@ -963,7 +963,11 @@ json_document(struct text *t, const struct glb_plan *plan)
     }
     text_printf(t, ",\"mode\":4%s}]}],", o->material ? ",\"material\":0" : "");
     json_accessors(t, plan);
-    text_printf(t, "\"buffers\":[{\"byteLength\":%zu}]}", plan->bin_length);
+    text_printf(t, "\"buffers\":[{");
+    if (o->bin_uri) {
+        text_printf(t, "\"uri\":\"%s\",", o->bin_uri);
+    }
+    text_printf(t, "\"byteLength\":%zu}]}", plan->bin_length);
     // Pad the JSON chunk with spaces to a multiple of 4 bytes.
     while (!t->failed && t->len % 4 != 0) {
         text_printf(t, " ");
@@ -1001,6 +1005,33 @@ write_glb_file(
     return fclose(f) == 0 && ok;
 }
 
+/* A .gltf at path and its buffer at uri, relative to path's directory. */
+static bool
+write_gltf_files(
+    const char *path,
+    const char *uri,
+    const struct text *json,
+    const unsigned char *bin,
+    size_t bin_length)
+{
+    const char *slash = strrchr(path, '/');
+    size_t dir = slash ? (size_t)(slash - path + 1) : 0;
+    char *bin_path = malloc(dir + strlen(uri) + 1);
+    bool ok = bin_path != NULL;
+    if (ok) {
+        memcpy(bin_path, path, dir);
+        memcpy(bin_path + dir, uri, strlen(uri) + 1);
+        FILE *f = fopen(bin_path, "wb");
+        ok = f && fwrite(bin, 1, bin_length, f) == bin_length;
+        ok = f && fclose(f) == 0 && ok;
+        f = ok ? fopen(path, "wb") : NULL;
+        ok = f && fwrite(json->buf, 1, json->len, f) == json->len;
+        ok = f && fclose(f) == 0 && ok;
+    }
+    free(bin_path);
+    return ok;
+}
+
 bool
 meshgen_write_glb(
     const struct meshgen_mesh *m,
@@ -1019,7 +1050,10 @@ meshgen_write_glb(
     if (bin && !json.failed) {
         json_document(&json, &plan);
         fill_bin(&plan, bin);
-        ok = !json.failed && write_glb_file(path, &json, bin, plan.bin_length);
+        const char *uri = plan.opts->bin_uri;
+        ok = !json.failed
+             && (uri ? write_gltf_files(path, uri, &json, bin, plan.bin_length)
+                     : write_glb_file(path, &json, bin, plan.bin_length));
     }
     free(json.buf);
     free(bin);

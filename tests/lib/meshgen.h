@@ -149,13 +149,19 @@ struct meshgen_glb_options {
     const char *nodes;
     int n_nodes;
     const char *members;
+    /* NULL: a .glb.  Else a .gltf: the JSON as text, its buffer in an
+     * external file at this URI relative to the .gltf's directory (a
+     * relative path, written into the JSON as given), which is written
+     * too. */
+    const char *bin_uri;
 };
 
-/* Write m as a .glb: one scene, one node (with the options' transform), one
- * mesh of one TRIANGLES primitive; float32 POSITION with min/max (left out
- * when a coordinate is not finite), float32 NORMAL, and the indices.  opts
- * may be NULL.  False when the file cannot be written, memory runs out, the
- * mesh does not fit the index type or the file would exceed 4 GiB. */
+/* Write m as a .glb (or a .gltf and its buffer: bin_uri): one scene, one
+ * node (with the options' transform), one mesh of one TRIANGLES primitive;
+ * float32 POSITION with min/max (left out when a coordinate is not finite),
+ * float32 NORMAL, and the indices.  opts may be NULL.  False when a file
+ * cannot be written, memory runs out, the mesh does not fit the index type
+ * or the file would exceed 4 GiB. */
 bool meshgen_write_glb(
     const struct meshgen_mesh *m,
     const char *path,

@@ -16,6 +16,7 @@
 
 #include "check.h"
 #include "gltf.h"
+#include "meshgen.h"
 #include "testlib.h"
 
 /* Mostly empty space: a large image renders fast, so a test can make the
@@ -121,37 +122,76 @@ TEST(an_output_over_the_scene_is_refused_by_identity)
     remove_dir(dir);
 }
 
-/* A mesh the scene reads is an input too. */
-TEST(an_output_over_a_mesh_is_refused)
+/* A run that writes option's output over input, one of the files a scene
+ * reads, is refused before any work (exit 2, naming both paths), and input
+ * is left as it was. */
+static void
+check_refused_over_input(const char *scene, const char *option, const char *input, const char *dir)
+{
+    size_t len = 0;
+    char *before = test_read_file(input, &len);
+    const char *image = strcmp(option, "-o") == 0 ? input : in_dir(dir, "x.png");
+    const char *args[] =
+        {"-o", image, "--stats", strcmp(option, "-o") == 0 ? in_dir(dir, "x.json") : input, NULL};
+    char log[4096];
+    CHECK_MSG(test_render(scene, args, log, sizeof log) == 2, "%s %s: %s", option, input, log);
+    char quoted[4200];
+    snprintf(quoted, sizeof quoted, "%s '%s' is a file the scene reads, '", option, input);
+    const char *name = strrchr(input, '/') ? strrchr(input, '/') + 1 : input;
+    const char *said = strstr(log, quoted);
+    CHECK_MSG(said && strstr(said + strlen(quoted), name), "%s", log);
+    size_t after_len = 0;
+    char *after = test_read_file(input, &after_len);
+    CHECK_MSG(
+        before && after && after_len == len && memcmp(before, after, len) == 0,
+        "%s was changed",
+        input);
+    free(before);
+    free(after);
+}
+
+/* The files a scene reads are inputs too: a mesh, and every file its glTF
+ * load reads besides (external buffers, images, read though not decoded). */
+TEST(an_output_over_a_file_the_scene_reads_is_refused)
 {
     if (!gltf_available()) {
         SKIP("built without glTF: no mesh can be read");
     }
     const char *dir = fresh_dir("over-mesh");
     const char *scene = in_dir(dir, "m.scene");
-    const char *mesh = in_dir(dir, "box.glb");
     size_t len = 0;
     char *glb = test_read_file(test_root_path("scenes/models/Box.glb"), &len);
-    FILE *f = fopen(mesh, "wb");
-    CHECK(glb && f && fwrite(glb, 1, len, f) == len);
-    if (f) {
-        fclose(f);
-    }
+    CHECK(glb && test_write_bytes(in_dir(dir, "box.glb"), glb, len));
+    free(glb);
+    struct meshgen_mesh box = meshgen_box((double[3]){-1, -1, -1}, (double[3]){1, 1, 1});
+    /* With a camera, to be a whole scene too. */
+    const struct meshgen_glb_options external = {
+        .bin_uri = "model.bin",
+        .nodes = "{\"camera\":0,\"translation\":[0,0,5]}",
+        .n_nodes = 1,
+        .members =
+            "\"images\":[{\"uri\":\"texture.png\"}],"
+            "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.7,\"znear\":0.1}}]",
+    };
+    CHECK(meshgen_write_glb(&box, in_dir(dir, "model.gltf"), &external));
+    meshgen_free(&box);
+    CHECK(test_write_file(in_dir(dir, "texture.png"), "a texture, never decoded"));
     test_write_file(
         scene,
         "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\n"
         "image width 8 height 8\n"
         "material white diffuse albedo 0.7 0.7 0.7\n"
-        "mesh file box.glb material white\n");
-    const char *args[] = {"-o", in_dir(dir, "x.png"), "--stats", mesh, NULL};
-    char log[4096];
-    CHECK_MSG(test_render(scene, args, log, sizeof log) == 2, "%s", log);
-    CHECK_MSG(strstr(log, "box.glb' is the mesh"), "%s", log);
-    size_t after = 0;
-    char *kept = test_read_file(mesh, &after);
-    CHECK(kept && after == len && memcmp(kept, glb, len) == 0);
-    free(kept);
-    free(glb);
+        "mesh file box.glb material white\n"
+        "mesh file model.gltf material white\n");
+    check_refused_over_input(scene, "--stats", in_dir(dir, "box.glb"), dir);
+    check_refused_over_input(scene, "--stats", in_dir(dir, "model.gltf"), dir);
+    check_refused_over_input(scene, "-o", in_dir(dir, "texture.png"), dir);
+    check_refused_over_input(scene, "--stats", in_dir(dir, "model.bin"), dir);
+    /* The glTF file as the whole scene: its buffer is an input. */
+    char gltf_scene[4096];
+    snprintf(gltf_scene, sizeof gltf_scene, "%s", in_dir(dir, "model.gltf"));
+    check_refused_over_input(gltf_scene, "--stats", in_dir(dir, "model.bin"), dir);
+    CHECK(!test_file_exists(in_dir(dir, "x.png")) && !test_file_exists(in_dir(dir, "x.json")));
     remove_dir(dir);
 }
 
@@ -365,7 +405,7 @@ TEST(no_signal_leaves_a_temporary_file)
 TEST_MAIN(
     TEST_ENTRY(two_outputs_that_are_one_file_are_refused),
     TEST_ENTRY(an_output_over_the_scene_is_refused_by_identity),
-    TEST_ENTRY(an_output_over_a_mesh_is_refused),
+    TEST_ENTRY(an_output_over_a_file_the_scene_reads_is_refused),
     TEST_ENTRY(a_missing_directory_is_refused_at_once_and_nothing_is_written),
     TEST_ENTRY(a_derived_image_size_past_the_limit_is_refused),
     TEST_ENTRY(when_one_output_fails_none_is_left),
