@@ -5,6 +5,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "metrics.h"
 #include "rng.h"
@@ -56,6 +57,39 @@ stagecheck_render(
         return false;
     }
     return test_render_image(scene, argv, out);
+}
+
+bool
+stagecheck_endless_render(
+    struct stagecheck_endless *run,
+    int size,
+    const char *out,
+    const char *stats)
+{
+    const char *render = test_render_binary();
+    if (!render) {
+        printf("stagecheck_endless_render: RENDER is not set\n");
+        return false;
+    }
+    snprintf(run->size, sizeof run->size, "%d", size);
+    const char *argv[] = {
+        render,
+        "-q",
+        "-W",
+        run->size,
+        "-H",
+        run->size,
+        "--spp",
+        "1000000",
+        "-o",
+        out,
+        "--stats",
+        stats,
+        test_root_path("scenes/cornell_diffuse_area.scene"),
+        NULL};
+    _Static_assert(sizeof argv <= sizeof run->argv, "stagecheck_endless.argv is too small");
+    memcpy(run->argv, argv, sizeof argv);
+    return true;
 }
 
 double

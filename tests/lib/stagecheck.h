@@ -1,9 +1,9 @@
 /*
- * stagecheck.h - helpers shared by the tests of stages 02-04 (shadows, soft
- * shadows, Whitted): scenes written from a format string, renders that also
- * return their --stats, the reference images of tests/reference/, and the
- * small image statistics those tests need beyond metrics.h (region means,
- * per-pixel comparisons).
+ * stagecheck.h - helpers shared by the tests of stages 02-07 (shadows, soft
+ * shadows, Whitted, path tracing): scenes written from a format string,
+ * renders that also return their --stats, a render to stop with a signal,
+ * the reference images of tests/reference/, and the small image statistics
+ * those tests need beyond metrics.h (region means, per-pixel comparisons).
  */
 #ifndef STAGECHECK_H
 #define STAGECHECK_H
@@ -30,6 +30,22 @@ bool stagecheck_render(
     const char *const args[],
     struct image *out,
     const char **stats);
+
+/* A render that runs until a signal stops it, for the tests that send one
+ * (07_progressive.c, 07_signals.c): the stage's render (RENDER), quiet,
+ * scenes/cornell_diffuse_area.scene at size x size pixels with --spp
+ * 1000000 (hours of passes), its image to out and its --stats to stats. */
+struct stagecheck_endless {
+    char size[16];
+    const char *argv[16]; /* NULL-terminated */
+};
+
+/* Fill run->argv; false (and a message) when RENDER is not set. */
+bool stagecheck_endless_render(
+    struct stagecheck_endless *run,
+    int size,
+    const char *out,
+    const char *stats);
 
 /* A numeric key of a --stats file; NaN (and a message) when it is missing. */
 double stagecheck_stat(const char *stats, const char *key);

@@ -357,77 +357,59 @@ write_tick_label(FILE *f, double v, enum svgplot_scale scale, double step)
     }
 }
 
+/* A line between two points of the SVG. */
 static void
-write_x_ticks(FILE *f, const struct frame *fr)
+write_line(FILE *f, const char *class, double x1, double y1, double x2, double y2)
 {
+    fprintf(
+        f,
+        "<line class=\"%s\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
+        class,
+        x1,
+        y1,
+        x2,
+        y2);
+}
+
+/* The ticks of one axis, the horizontal one (x_axis: marks and labels
+ * below the frame) or the vertical one (left of it): at a major tick a
+ * grid line across the frame and a label, at every tick a mark outward
+ * (half as long at a minor one). */
+static void
+write_ticks(FILE *f, const struct frame *fr, bool x_axis)
+{
+    enum svgplot_scale scale = x_axis ? fr->xs : fr->ys;
     struct svgplot_tick ticks[MAX_TICKS];
-    size_t n = svgplot_ticks(fr->x_lo, fr->x_hi, fr->xs, ticks, MAX_TICKS);
+    size_t n = x_axis ? svgplot_ticks(fr->x_lo, fr->x_hi, scale, ticks, MAX_TICKS)
+                      : svgplot_ticks(fr->y_lo, fr->y_hi, scale, ticks, MAX_TICKS);
     n = n < MAX_TICKS ? n : MAX_TICKS;
     double step = n > 1 ? ticks[1].value - ticks[0].value : 1;
     double bottom = fr->top + fr->height;
-    for (size_t i = 0; i < n; i++) {
-        double x = pixel_x(fr, to_axis(ticks[i].value, fr->xs));
-        double len = ticks[i].major ? TICK_LENGTH : TICK_LENGTH / 2.0;
-        if (ticks[i].major) {
-            fprintf(
-                f,
-                "<line class=\"grid\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
-                x,
-                fr->top,
-                x,
-                bottom);
-            fprintf(
-                f,
-                "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\">",
-                x,
-                bottom + TICK_LENGTH + 14);
-            write_tick_label(f, ticks[i].value, fr->xs, step);
-            fputs("</text>\n", f);
-        }
-        fprintf(
-            f,
-            "<line class=\"tick\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
-            x,
-            bottom,
-            x,
-            bottom + len);
-    }
-}
-
-static void
-write_y_ticks(FILE *f, const struct frame *fr)
-{
-    struct svgplot_tick ticks[MAX_TICKS];
-    size_t n = svgplot_ticks(fr->y_lo, fr->y_hi, fr->ys, ticks, MAX_TICKS);
-    n = n < MAX_TICKS ? n : MAX_TICKS;
-    double step = n > 1 ? ticks[1].value - ticks[0].value : 1;
     double right = fr->left + fr->width;
     for (size_t i = 0; i < n; i++) {
-        double y = pixel_y(fr, to_axis(ticks[i].value, fr->ys));
+        double at = to_axis(ticks[i].value, scale);
+        double p = x_axis ? pixel_x(fr, at) : pixel_y(fr, at);
         double len = ticks[i].major ? TICK_LENGTH : TICK_LENGTH / 2.0;
         if (ticks[i].major) {
+            if (x_axis) {
+                write_line(f, "grid", p, fr->top, p, bottom);
+            } else {
+                write_line(f, "grid", fr->left, p, right, p);
+            }
             fprintf(
                 f,
-                "<line class=\"grid\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
-                fr->left,
-                y,
-                right,
-                y);
-            fprintf(
-                f,
-                "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"end\">",
-                fr->left - TICK_LENGTH - 4,
-                y + 4);
-            write_tick_label(f, ticks[i].value, fr->ys, step);
+                "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"%s\">",
+                x_axis ? p : fr->left - TICK_LENGTH - 4,
+                x_axis ? bottom + TICK_LENGTH + 14 : p + 4,
+                x_axis ? "middle" : "end");
+            write_tick_label(f, ticks[i].value, scale, step);
             fputs("</text>\n", f);
         }
-        fprintf(
-            f,
-            "<line class=\"tick\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
-            fr->left - len,
-            y,
-            fr->left,
-            y);
+        if (x_axis) {
+            write_line(f, "tick", p, bottom, p, bottom + len);
+        } else {
+            write_line(f, "tick", fr->left - len, p, fr->left, p);
+        }
     }
 }
 
@@ -444,8 +426,8 @@ static void
 write_axes(FILE *f, const struct svgplot *plot, const struct frame *fr, double width)
 {
     fputs("<g class=\"axes\">\n", f);
-    write_x_ticks(f, fr);
-    write_y_ticks(f, fr);
+    write_ticks(f, fr, true);
+    write_ticks(f, fr, false);
     fprintf(
         f,
         "<rect class=\"frame\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\"/>\n",
@@ -667,9 +649,9 @@ write_reflines(FILE *f, const struct svgplot *plot, const struct frame *fr)
             || !clip_refline(fr, r, seg)) {
             continue;
         }
-        fprintf(
+        write_line(
             f,
-            "<line class=\"refline\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
+            "refline",
             pixel_x(fr, seg[0]),
             pixel_y(fr, seg[1]),
             pixel_x(fr, seg[2]),
@@ -693,13 +675,7 @@ write_legend_row(
 {
     const char *colour = s ? series_colour(s, index) : "";
     if (!s) {
-        fprintf(
-            f,
-            "<line class=\"refline\" x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n",
-            x,
-            y,
-            x + 24,
-            y);
+        write_line(f, "refline", x, y, x + 24, y);
     } else if (!s->no_line) {
         fprintf(
             f,

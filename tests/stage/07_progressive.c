@@ -134,36 +134,21 @@ run_and_interrupt(const char *const argv[], double delay, bool *running)
 
 TEST(interrupt_keeps_the_complete_passes)
 {
-    const char *render = test_render_binary();
     const char *out = test_tmp_path("interrupted.pfm");
     const char *stats = test_tmp_path("interrupted.json");
-    if (!render) {
+    struct stagecheck_endless run;
+    if (!stagecheck_endless_render(&run, SIZE, out, stats)) {
         CHECK_MSG(false, "RENDER is not set");
         return;
     }
     remove(out);
-    const char *const argv[] = {
-        render,
-        "-q",
-        "-W",
-        "64",
-        "-H",
-        "64",
-        "--spp",
-        "1000000",
-        "-o",
-        out,
-        "--stats",
-        stats,
-        test_root_path("scenes/cornell_diffuse_area.scene"),
-        NULL};
     /* Exit 130 means the signal came before the first pass was complete:
      * legal, and likely on a loaded machine or under a sanitizer, so wait
      * longer and try again rather than fail on the machine's speed. */
     bool running = false;
     int status = 130;
     for (double delay = 0.5; status == 130 && delay < 20; delay *= 4) {
-        status = run_and_interrupt(argv, delay, &running);
+        status = run_and_interrupt(run.argv, delay, &running);
     }
     CHECK_MSG(running, "the render finished before the signal");
     CHECK_MSG(status == 0, "exit status %d after SIGINT", status);

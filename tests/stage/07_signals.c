@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "check.h"
+#include "stagecheck.h"
 #include "testlib.h"
 
 TEST(sigterm_and_sighup_write_the_complete_passes)
@@ -20,22 +21,12 @@ TEST(sigterm_and_sighup_write_the_complete_passes)
         char out[64], stats[64];
         snprintf(out, sizeof out, "%s.pfm", names[i]);
         snprintf(stats, sizeof stats, "%s.json", names[i]);
-        const char *argv[] = {
-            test_render_binary(),
-            "-q",
-            "-W",
-            "64",
-            "-H",
-            "64",
-            "--spp",
-            "1000000",
-            "-o",
-            test_tmp_path(out),
-            "--stats",
-            test_tmp_path(stats),
-            test_root_path("scenes/cornell_diffuse_area.scene"),
-            NULL};
-        int pid = test_spawn(argv, test_tmp_path("signals.log"));
+        struct stagecheck_endless run;
+        if (!stagecheck_endless_render(&run, 64, test_tmp_path(out), test_tmp_path(stats))) {
+            CHECK_MSG(false, "RENDER is not set");
+            return;
+        }
+        int pid = test_spawn(run.argv, test_tmp_path("signals.log"));
         /* Long past loading the scene on a busy machine; the render would
          * take hours. */
         struct timespec wait = {1, 500 * 1000 * 1000};
