@@ -84,8 +84,23 @@ ALL_LDLIBS = $(EXR_LDLIBS) $(LINK_LDLIBS) $(LDLIBS) -lm
 # directory never holds objects of two flag sets.  -Werror is left out: it
 # changes no object (`make WERROR=1` recompiles only what is out of date);
 # the project's path is written as @ROOT@, so that copies of one tree that
-# share a build directory (the lab handouts' common core) agree.
-flags_stamp = $(strip $(if $(call same_text,$(file <$(1)/flags.stamp),$(call stamp_text,$(2))),,\
+# share a build directory (the lab handouts' common core) agree.  The file's
+# text is compared stripped: $(file <) of GNU make 4.3 may keep its final
+# newline, and then every make rewrote the stamp of build/tools/ and rebuilt
+# every tool.
+flags_stamp = $(strip $(if $(call same_text,$(strip $(file <$(1)/flags.stamp)),$(call stamp_text,$(2))),,\
     $(shell mkdir -p '$(1)')$(file >$(1)/flags.stamp,$(call stamp_text,$(2))))$(1)/flags.stamp)
 stamp_text = $(strip $(filter-out -Werror,$(subst $(ROOT),@ROOT@,$(1))))
 same_text = $(and $(findstring x$(1)x,x$(2)x),$(findstring x$(2)x,x$(1)x))
+
+# Dependency files.  $(call include_deps,FILES) includes the .d files
+# (gcc -MMD -MP) among FILES that exist, each only while the source it was
+# made from (its first prerequisite) still exists.  -MP keeps a header that
+# has gone from stopping make, but not the source itself: after a source
+# moves (the tests/ layout move put tests/meshgen.c in tests/lib/), an
+# earlier build's .d file would stop every make of that directory with "No
+# rule to make target 'meshgen.c'".  Such a .d file and its target are
+# removed instead, so the target is built again from the source where it is
+# now, which writes a fresh .d file.
+include_deps = $(foreach d,$(wildcard $(1)),$(call dep_file,$(d),$(filter-out \,$(file <$(d)))))
+dep_file = $(if $(wildcard $(word 2,$(2))),$(eval -include $(1)),$(shell rm -f '$(1)' '$(patsubst %:,%,$(firstword $(2)))'))

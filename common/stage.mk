@@ -37,4 +37,4 @@ clean:
 
 FORCE:
 .PHONY: all test clean FORCE
--include $(OBJS:.o=.d)
+$(call include_deps,$(OBJS:.o=.d))
