@@ -12,11 +12,16 @@
 #   lab-fails  the lab's tests (tests/stage/NN_*.c, NN-MM_*.c) fail: at least
 #              one reports a failure (a handout whose tests pass is broken);
 #              --quick runs them one TEST() at a time up to the first failure
+#   untouched  grade.sh scores the handout 0%: every lab test that passes
+#              without the work is a control, not scored           [full]
 #   earlier    the other tests (earlier stages' features) pass     [full]
 #   no-leaks   no line of a LAB NN region is in the handout, unless it is
 #              also outside the regions or trivial (leaks.awk)
-#   solution   with the stage's solution copied in, every test of the
-#              handout passes: the handout is a complete harness     [full]
+#   solution   with the stage's solution copied in, grade.sh scores it
+#              100% (the same controls aside) and every earlier test
+#              passes: the handout is a complete harness            [full]
+# The [full] checks grade the handout with grade.sh, as make grade does
+# (without report pages), its report in OUT/logs/NN/grade-*.log.
 # One result line per check, as tests/harness/run-tests.sh prints them, details
 # indented, and the closing line "N passed, N failed, N skipped".
 #
@@ -103,34 +108,26 @@ rel() {
     echo "${1#"$root"/}"
 }
 
-# run_group DIR NN LOGDIR lab|earlier|all - run the handout's test programs
-# of one group: one detail line each on stderr; on stdout the numbers of
-# programs that passed and that failed, "P F".
-run_group() {
-    rg_dir=$1
-    rg_nn=$2
-    rg_logs=$3
-    rg_group=$4
-    rg_p=0
-    rg_f=0
-    mkdir -p "$rg_logs"
-    for rg_src in $(handout_tests "$rg_dir"); do
-        rg_from=$(test_from "$rg_src")
-        case $rg_group in
-            lab) [ "$rg_from" = "$rg_nn" ] || continue ;;
-            earlier) [ "$rg_from" != "$rg_nn" ] || continue ;;
-        esac
-        rg_name=$(basename "$rg_src" .c)
-        rg_res=$(run_handout_test "$rg_dir" "$rg_src" "$rg_logs/$rg_name.log" "$limit")
-        read -r rg_tp rg_tf rg_ts rg_status rg_note <<EOF
-$rg_res
-EOF
-        if [ "$rg_note" = - ]; then rg_note=; else rg_note=" ($rg_note)"; fi
-        printf '%s: %s passed, %s failed, %s skipped%s\n' \
-            "$rg_name" "$rg_tp" "$rg_tf" "$rg_ts" "$rg_note" >&2
-        if [ "$rg_tf" -gt 0 ]; then rg_f=$((rg_f + 1)); else rg_p=$((rg_p + 1)); fi
-    done
-    echo "$rg_p $rg_f"
+# grade_handout DIR LOG [OPTION...] - grade.sh on a handout (no report
+# pages), its report into LOG; prints the fields of its GRADE line
+# ("score=0.0 lab_passed=0 ..."), nothing when it could not grade.
+grade_handout() {
+    gh_dir=$1
+    gh_log=$2
+    shift 2
+    "$LAB_DIR/grade.sh" --no-pages --root "$root" --timeout "$limit" --jobs "$jobs" "$@" "$gh_dir" \
+        >"$gh_log" 2>&1 || true
+    sed -n 's/^GRADE //p' "$gh_log" | tail -n 1
+}
+
+# field FIELDS KEY - the value of KEY=value in a GRADE line's fields.
+field() {
+    echo "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"
+}
+
+# The report lines of a grade log that name failures.
+grade_failures() {
+    grep -E 'failed:|fails now|^note:' "$1" | head -n 20 | detail
 }
 
 # first_failure DIR NN LOGDIR - run the lab's tests one TEST() at a time,
@@ -225,23 +222,28 @@ check_leaks() {
     fi
 }
 
-# Copy the solution into the handout, run all its tests, put the handout back.
+# Copy the solution into the handout, grade it (with the controls of the
+# untouched handout, CONTROLS), put the handout back.
 check_solution() {
     csl_stage=$1
     csl_dir=$2
     csl_logs=$3
     cp "$root/stages/$csl_stage"/* "$csl_dir/stages/$csl_stage/"
-    if ! handout_build "$csl_dir" "$csl_logs/solution-build.log" all -j"$jobs"; then
-        result FAIL "$csl_stage" "solution: the solution does not build in the handout (log: $(rel "$csl_logs")/solution-build.log)"
-        build_errors "$csl_logs/solution-build.log" | detail
+    csl_g=$(grade_handout "$csl_dir" "$csl_logs/grade-solution.log" --controls "$4")
+    csl_log="(log: $(rel "$csl_logs")/grade-solution.log)"
+    if [ -z "$csl_g" ]; then
+        result FAIL "$csl_stage" "solution: grade.sh could not grade the handout with the solution $csl_log"
+        tail -n 5 "$csl_logs/grade-solution.log" | detail
+    elif [ "$(field "$csl_g" build)" != ok ]; then
+        result FAIL "$csl_stage" "solution: the solution does not build in the handout $csl_log"
+        grade_failures "$csl_logs/grade-solution.log"
+    elif [ "$(field "$csl_g" score)" = 100.0 ] &&
+        [ "$(field "$csl_g" earlier_passed)" = "$(field "$csl_g" earlier_total)" ] &&
+        ! grep -q 'fails now' "$csl_logs/grade-solution.log"; then
+        result ok "$csl_stage" "solution: with the solution copied in, it scores 100% ($(field "$csl_g" lab_passed) tests, $(field "$csl_g" controls) controls aside) and every earlier test passes"
     else
-        set -- $(run_group "$csl_dir" "${csl_stage%%_*}" "$csl_logs/solution" all 2>"$csl_logs/solution-tests")
-        if [ "$2" -eq 0 ]; then
-            result ok "$csl_stage" "solution: with the solution copied in, the handout's tests pass ($1 programs)"
-        else
-            result FAIL "$csl_stage" "solution: with the solution copied in, the handout's tests fail"
-            grep -v ' 0 failed' "$csl_logs/solution-tests" | detail
-        fi
+        result FAIL "$csl_stage" "solution: with the solution copied in, it scores $(field "$csl_g" score)% and $(field "$csl_g" earlier_passed) of $(field "$csl_g" earlier_total) earlier tests pass, not 100% and all $csl_log"
+        grade_failures "$csl_logs/grade-solution.log"
     fi
     "$LAB_DIR/make-lab.sh" --quiet --discard-changes --root "$root" "$csl_stage" "$csl_dir" 2>/dev/null ||
         warn "could not restore the handout in $csl_dir"
@@ -283,7 +285,7 @@ check_stage() {
         failed)
             result FAIL "$cs_stage" "make-lab.sh failed"
             detail "$cs_logs/make-lab.log"
-            for cs_w in build lab-fails earlier no-leaks solution; do
+            for cs_w in build lab-fails untouched earlier no-leaks solution; do
                 result skip "$cs_stage" "$cs_w: no handout"
             done
             return 0
@@ -304,6 +306,7 @@ check_stage() {
         result FAIL "$cs_stage" "build: the handout does not build with WERROR=1 (log: $(rel "$cs_logs")/build.log)"
         build_errors "$cs_logs/build.log" | detail
         result skip "$cs_stage" "lab-fails: the handout does not build"
+        result skip "$cs_stage" "untouched: the handout does not build"
         result skip "$cs_stage" "earlier: the handout does not build"
         check_leaks "$cs_stage" "$cs_dir" "$cs_logs"
         result skip "$cs_stage" "solution: the handout does not build"
@@ -321,34 +324,56 @@ check_stage() {
         else
             result FAIL "$cs_stage" "lab-fails: the lab's tests pass in the handout: a stub implements the feature, or the tests miss it"
         fi
-    else
-        set -- $(run_group "$cs_dir" "$cs_nn" "$cs_logs/tests" lab 2>"$cs_logs/lab-tests")
-        if [ "$2" -gt 0 ]; then
-            result ok "$cs_stage" "lab-fails: the lab's tests fail in the handout, as they must"
-        else
-            result FAIL "$cs_stage" "lab-fails: the lab's tests pass in the handout: a stub implements the feature, or the tests miss it"
-        fi
-        detail "$cs_logs/lab-tests"
     fi
 
+    # [full] grade.sh on the untouched handout: its controls, 0%, the
+    # earlier tests.
+    cs_g=
     if [ "$mode" = quick ]; then
+        result skip "$cs_stage" "untouched: --quick (make check-labs runs it)"
         result skip "$cs_stage" "earlier: --quick (make check-labs runs it)"
-    else
-        set -- $(run_group "$cs_dir" "$cs_nn" "$cs_logs/tests" earlier 2>"$cs_logs/earlier-tests")
-        if [ "$2" -eq 0 ]; then
-            result ok "$cs_stage" "earlier: the earlier stages' tests pass in the handout ($1 programs)"
+    elif [ -n "$cs_own" ]; then
+        cs_g=$(grade_handout "$cs_dir" "$cs_logs/grade-untouched.log" --save-controls "$cs_logs/controls")
+        cs_log="(log: $(rel "$cs_logs")/grade-untouched.log)"
+        if [ -z "$cs_g" ] || [ "$(field "$cs_g" build)" != ok ]; then
+            result FAIL "$cs_stage" "lab-fails: grade.sh could not grade the handout $cs_log"
+            tail -n 5 "$cs_logs/grade-untouched.log" | detail
+            result skip "$cs_stage" "untouched: no grade"
+            result skip "$cs_stage" "earlier: no grade"
         else
-            result FAIL "$cs_stage" "earlier: earlier stages' tests fail in the handout: a stub breaks more than lab $cs_nn"
-            grep -v ' 0 failed' "$cs_logs/earlier-tests" | detail
+            cs_total=$(field "$cs_g" lab_total)
+            cs_controls=$(field "$cs_g" controls)
+            if [ "$cs_total" -gt 0 ]; then
+                result ok "$cs_stage" "lab-fails: the lab's tests fail in the handout, as they must ($cs_total of them; $cs_controls control(s) pass)"
+            else
+                result FAIL "$cs_stage" "lab-fails: the lab's tests pass in the handout: a stub implements the feature, or the tests miss it"
+            fi
+            if [ "$(field "$cs_g" score)" = 0.0 ] && [ "$(field "$cs_g" lab_passed)" = 0 ] && [ "$cs_total" -gt 0 ]; then
+                result ok "$cs_stage" "untouched: grade.sh scores the handout 0% (0 of $cs_total; $cs_controls control(s) not scored)"
+            else
+                result FAIL "$cs_stage" "untouched: grade.sh scores the handout $(field "$cs_g" score)%, not 0% $cs_log"
+                grep -A3 '^this lab' "$cs_logs/grade-untouched.log" | detail
+            fi
+            if [ "$(field "$cs_g" earlier_passed)" = "$(field "$cs_g" earlier_total)" ]; then
+                result ok "$cs_stage" "earlier: the earlier stages' tests pass in the handout ($(field "$cs_g" earlier_total) tests)"
+            else
+                result FAIL "$cs_stage" "earlier: earlier stages' tests fail in the handout: a stub breaks more than lab $cs_nn $cs_log"
+                grade_failures "$cs_logs/grade-untouched.log"
+            fi
         fi
+    else
+        result skip "$cs_stage" "untouched: no tests of its own"
+        result skip "$cs_stage" "earlier: no tests of its own"
     fi
 
     check_leaks "$cs_stage" "$cs_dir" "$cs_logs"
 
     if [ "$mode" = quick ]; then
         result skip "$cs_stage" "solution: --quick (make check-labs runs it)"
+    elif [ -z "$cs_g" ]; then
+        result skip "$cs_stage" "solution: no controls (the untouched handout was not graded)"
     else
-        check_solution "$cs_stage" "$cs_dir" "$cs_logs"
+        check_solution "$cs_stage" "$cs_dir" "$cs_logs" "$cs_logs/controls"
     fi
 }
 

@@ -15,7 +15,8 @@
 # fresh one from the project, as make-lab.sh writes it) measures nothing of
 # the student's work; it is listed as a control, not scored.  grade.sh
 # finds them by building and running the untouched handout's lab tests
-# first (--controls FILE gives them instead).
+# first (--controls FILE gives them instead); LAB itself when it is
+# untouched (without --pristine).
 #
 # The last line is for scripts:
 #   GRADE lab=05_bvh score=42.9 lab_passed=3 lab_total=7 controls=2 earlier_passed=40 earlier_total=40 build=ok
@@ -29,6 +30,8 @@
 #                  the student changed outside stages/ are listed
 #   --controls FILE  the controls are the TEST()s FILE lists, one
 #                  "PROGRAM TEST" a line (no untouched handout is run)
+#   --save-controls FILE  write the controls to FILE, in that form (to
+#                  grade many handouts of one lab with one untouched run)
 #   --pages DIR    where the report pages go (default LAB/grade): one
 #                  compare page per reference render (grade-pages.sh)
 #   --no-pages     write no report pages
@@ -49,6 +52,7 @@ pristine=0
 pages=
 no_pages=0
 controls=
+save_controls=
 limit=300
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
 while [ $# -gt 0 ]; do
@@ -56,11 +60,12 @@ while [ $# -gt 0 ]; do
         -h | --help) show_help "$0"; exit 0 ;;
         --pristine) pristine=1 ;;
         --no-pages) no_pages=1 ;;
-        --timeout | --jobs | --root | --pages | --controls)
+        --timeout | --jobs | --root | --pages | --controls | --save-controls)
             [ $# -ge 2 ] || usage_error "$1 needs a value"
             case $1 in
                 --pages) pages=$2 ;;
                 --controls) controls=$2 ;;
+                --save-controls) save_controls=$2 ;;
                 --timeout) limit=$2 ;;
                 --jobs) jobs=$2 ;;
                 --root) root=$(abs_dir "$2") ;;
@@ -109,10 +114,7 @@ if [ "$pristine" -eq 1 ]; then
     [ -d "$root/stages/$stage" ] || die "the project in $root has no stage $stage"
     "$LAB_DIR/make-lab.sh" --quiet --root "$root" "$stage" "$work/lab" ||
         die "could not write a fresh handout of $stage"
-    changed=$(cd "$lab" && find . -path ./build -prune -o -path "./stages/$stage" -prune -o \
-        -type f -print | sed 's|^\./||' | sort | while IFS= read -r f; do
-        cmp -s "$lab/$f" "$work/lab/$f" || echo "$f"
-    done)
+    changed=$(handout_differences "$lab" "$work/lab" | grep -v "^stages/$stage/" || true)
     if [ -n "$changed" ]; then
         echo "note: these files differ from the project's copy and are not used:"
         echo "$changed" | sed 's/^/    /'
@@ -126,7 +128,12 @@ if [ "$pristine" -eq 1 ]; then
 elif [ -z "$controls" ]; then
     if [ -d "$root/stages/$stage" ] &&
         "$LAB_DIR/make-lab.sh" --quiet --root "$root" "$stage" "$work/untouched-lab" 2>/dev/null; then
-        find_controls "$work/untouched-lab"
+        # An untouched LAB is its own control (its build serves both runs).
+        if [ -z "$(handout_differences "$lab" "$work/untouched-lab")" ]; then
+            find_controls "$lab"
+        else
+            find_controls "$work/untouched-lab"
+        fi
         rm -rf "$work/untouched-lab"
     else
         controls_known=unknown
@@ -134,6 +141,9 @@ elif [ -z "$controls" ]; then
     fi
 fi
 [ -f "$work/controls" ] || : >"$work/controls"
+if [ -n "$save_controls" ]; then
+    cp "$work/controls" "$save_controls" || die "cannot write $save_controls"
+fi
 
 # No program of an earlier build may stand in for one that does not build now.
 rm -rf "$dir/build/tests/$stage" "$dir/build/$stage/render"

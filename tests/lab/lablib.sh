@@ -233,3 +233,14 @@ handout_controls() {
         set -- "$1" "$2" "$3"
     done
 }
+
+# handout_differences A B - the files (paths relative to the handouts) that
+# differ between handouts A and B or are in one only; build/ and grade/
+# (make grade's report pages) aside.
+handout_differences() {
+    for hd_d in "$1" "$2"; do
+        (cd "$hd_d" && find . \( -path ./build -o -path ./grade \) -prune -o -type f -print)
+    done | sed 's|^\./||' | LC_ALL=C sort -u | while IFS= read -r hd_f; do
+        cmp -s "$1/$hd_f" "$2/$hd_f" 2>/dev/null || echo "$hd_f"
+    done
+}
