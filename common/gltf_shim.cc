@@ -1,6 +1,7 @@
 /*
  * gltf_shim.cc - gltf.h implemented with tinygltf (the project's only C++).
- * This file holds the C API; the loader's steps are in gltf_files.cc (reading
+ * This file holds the C API (gltf_free, the same without tinygltf, is in
+ * gltf_mesh.c); the loader's steps are in gltf_files.cc (reading
  * files, confined), gltf_parse.cc (GLB and JSON checks, tinygltf),
  * gltf_nodes.cc (transforms), gltf_accessors.cc (checks), gltf_copy.cc and
  * gltf_extras.cc (materials, cameras, lights), which share gltf_shim.h.
@@ -162,21 +163,4 @@ gltf_load_limited(const char *path, uint64_t max_bytes, struct gltf_mesh *out, s
     }
     gltf_free(out);
     return false;
-}
-
-extern "C" void
-gltf_free(struct gltf_mesh *mesh)
-{
-    free(mesh->positions);
-    free(mesh->normals);
-    free(mesh->indices);
-    free(mesh->triangle_material);
-    free(mesh->materials);
-    free(mesh->cameras);
-    free(mesh->lights);
-    for (size_t i = 0; i < mesh->n_files; i++) {
-        free(mesh->files[i]);
-    }
-    free(mesh->files);
-    *mesh = gltf_mesh{};
 }

@@ -8,8 +8,6 @@
  */
 #include "gltf.h"
 
-#include <stdlib.h>
-
 bool
 gltf_available(void)
 {
@@ -34,21 +32,4 @@ gltf_load_limited(const char *path, uint64_t max_bytes, struct gltf_mesh *out, s
         0,
         "this build has no glTF support: install libtinygltf-dev and rebuild");
     return false;
-}
-
-void
-gltf_free(struct gltf_mesh *mesh)
-{
-    free(mesh->positions);
-    free(mesh->normals);
-    free(mesh->indices);
-    free(mesh->triangle_material);
-    free(mesh->materials);
-    free(mesh->cameras);
-    free(mesh->lights);
-    for (size_t i = 0; i < mesh->n_files; i++) {
-        free(mesh->files[i]);
-    }
-    free(mesh->files);
-    *mesh = (struct gltf_mesh){0};
 }
