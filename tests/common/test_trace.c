@@ -1,0 +1,216 @@
+/*
+ * test_trace.c - the pixel trace's recorder and writers (common/trace.c),
+ * without a stage:
+ *   - render_pixel_traced gives the pixel the value render_image stores,
+ *     bit for bit, NaN passes guarded alike, and records one pass estimate
+ *     per pass;
+ *   - names: primitives (spheres, quads, triangles, lights) and materials
+ *     by the scene file's lines;
+ *   - the text form rounds and prints a number that is not one as "n/a",
+ *     the JSON form prints it as null and every other number exactly;
+ *   - the recorder stops at its limit and says the trace is truncated;
+ *   - no recorder, no cost: the trace_* calls with st->trace NULL do
+ *     nothing.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "driver.h"
+#include "scene.h"
+#include "trace.h"
+
+static const char scene_text[] = "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\n"
+                                 "image width 8 height 6\n"
+                                 "material plain diffuse albedo 0.5 0.5 0.5\n"
+                                 "material say-hi diffuse albedo 0.5 0.5 0.5\n"
+                                 "sphere center 0 0 0 radius 1 material plain\n"
+                                 "quad corner -1 -1 -1 edge1 2 0 0 edge2 0 0 2 material plain\n"
+                                 "triangle v0 0 0 0 v1 1 0 0 v2 0 1 0 material plain\n"
+                                 "point_light position 0 3 0 intensity 1 1 1\n"
+                                 "area_light corner 0 2 0 edge1 1 0 0 edge2 0 0 1 radiance 1 1 1\n";
+
+static bool
+load(struct scene *s)
+{
+    struct diag err;
+    bool ok = scene_load_string(scene_text, strlen(scene_text), "t.scene", s, &err);
+    CHECK_MSG(ok, "%s:%d:%d: %s", err.file, err.line, err.col, err.msg);
+    return ok;
+}
+
+/* The written form of a trace, in memory. */
+static char *
+written(const struct trace *t, bool json)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *f = open_memstream(&buf, &len);
+    if (json) {
+        trace_write_json(f, t);
+    } else {
+        trace_write_text(f, t);
+    }
+    fclose(f);
+    return buf;
+}
+
+/* A pixel function that records a sample and a hit, and whose value
+ * depends on the pass and the random stream; NaN in pass 2. */
+static vec3
+recording_pixel(const void *ctx, int px, int py, int pass, struct rng *rng, struct stats *st)
+{
+    (void)ctx;
+    ray r = {{0, 0, 5}, {0, 0, -1}};
+    trace_sample(st, pass, (real)px + (real)0.5, (real)py + (real)0.5, r);
+    trace_hit(st, 1, r, 4, (vec3){0, 0, 1}, 0, 0, (vec3){0, 0, 1}, (vec3){0, 0, 1}, true);
+    real zero = 0;
+    vec3 v = {rng_uniform(rng), (real)pass, (real)(px + py)};
+    return pass == 2 ? vec3_splat(zero / zero) : v;
+}
+
+TEST(traced_pixel_is_the_rendered_pixel)
+{
+    struct scene s = {0};
+    if (!load(&s)) {
+        return;
+    }
+    struct render_job job = {
+        .width = 8,
+        .height = 6,
+        .threads = 2,
+        .passes = 4,
+        .seed = 7,
+        .pass_pixel = recording_pixel};
+    struct image img = {0};
+    struct render_result result;
+    struct diag err;
+    CHECK(render_image(&job, &img, &result, &err));
+    for (int y = 0; y < 6; y += 5) {
+        for (int x = 0; x < 8; x += 3) {
+            struct trace *t = trace_new(&s, x, y);
+            float rgb[3];
+            struct render_result one;
+            render_pixel_traced(&job, x, y, t, rgb, &one);
+            CHECK(memcmp(rgb, image_pixel(&img, x, y), sizeof rgb) == 0);
+            CHECK(one.passes_done == 4 && one.nan_pixels == 1);
+            char *json = written(t, true);
+            CHECK(json && strstr(json, "{\"pass\": 3, \"estimate\": "));
+            CHECK(json && strstr(json, "{\"pass\": 2, \"estimate\": [null, null, null]}"));
+            free(json);
+            trace_free(t);
+        }
+    }
+    image_free(&img);
+    scene_free(&s);
+}
+
+TEST(names_by_line)
+{
+    struct scene s = {0};
+    if (!load(&s)) {
+        return;
+    }
+    struct trace *t = trace_new(&s, 1, 2);
+    struct stats st = {.trace = t};
+    ray r = {{0, 0, 5}, {0, 0, -1}};
+    vec3 n = {0, 0, 1};
+    trace_pass_begin(t, 0);
+    trace_sample(&st, 0, 1.25, 2.75, r);
+    /* Primitives: sphere 0, quad 1, triangle 2, area light 3. */
+    for (int prim = 0; prim < 4; prim++) {
+        trace_hit(&st, 1 + prim, r, 1, n, prim, prim == 2 ? 1 : 0, n, n, prim != 1);
+    }
+    trace_light(&st, TRACE_POINT_LIGHT, 0);
+    trace_specular(&st, "mirror", NAN, vec3_splat(0.5));
+    trace_pass_end(t, vec3_splat(1));
+    char *json = written(t, true);
+    char *text = written(t, false);
+    CHECK(json && strstr(json, "\"primitive\": {\"kind\": \"sphere\", \"index\": 0, \"line\": 5}"));
+    CHECK(json && strstr(json, "\"primitive\": {\"kind\": \"quad\", \"index\": 0, \"line\": 6}"));
+    CHECK(
+        json && strstr(json, "\"primitive\": {\"kind\": \"triangle\", \"index\": 0, \"line\": 7}"));
+    CHECK(
+        json
+        && strstr(json, "\"primitive\": {\"kind\": \"area_light\", \"index\": 0, \"line\": 9}"));
+    CHECK(
+        json && strstr(json, "\"source\": {\"kind\": \"point_light\", \"index\": 0, \"line\": 8}"));
+    CHECK(json && strstr(json, "\"material\": {\"name\": \"say-hi\", \"line\": 4}"));
+    CHECK(json && strstr(json, "\"subpixel\": [0.25, 0.75]"));
+    CHECK(json && strstr(json, "\"fresnel\": null"));
+    CHECK(json && strstr(json, "\"side\": \"back\""));
+    CHECK(text && strstr(text, "primitive sphere #0 (line 5)  material 'plain' (line 3)"));
+    CHECK(text && strstr(text, "fresnel n/a"));
+    CHECK(text && strstr(text, "subpixel (0.25 0.75)"));
+    free(json);
+    free(text);
+    trace_free(t);
+    scene_free(&s);
+}
+
+TEST(offsets_are_measured_from_the_spawning_hit)
+{
+    struct scene s = {0};
+    if (!load(&s)) {
+        return;
+    }
+    struct trace *t = trace_new(&s, 0, 0);
+    struct stats st = {.trace = t};
+    vec3 n = {0, 1, 0};
+    trace_pass_begin(t, 0);
+    trace_sample(&st, 0, 0.5, 0.5, (ray){{0, 0, 5}, {0, 0, -1}});
+    trace_hit(&st, 1, (ray){{0, 0, 5}, {0, 0, -1}}, 5, (vec3){0, 0, 0}, 1, 0, n, n, true);
+    trace_shadow(&st, (ray){{0, 0.25, 0}, {0, 1, 0}}, 2, -1, 0);
+    trace_hit(&st, 2, (ray){{0, 0.5, 0}, {0, 1, 0}}, 1, (vec3){0, 1.5, 0}, 0, 0, n, n, true);
+    trace_pass_end(t, vec3_splat(0));
+    char *json = written(t, true);
+    CHECK(json && strstr(json, "\"t_max\": 2") && strstr(json, "\"offset\": 0.25"));
+    CHECK(json && strstr(json, "\"depth\": 2") && strstr(json, "\"offset\": 0.5"));
+    free(json);
+    trace_free(t);
+    scene_free(&s);
+}
+
+TEST(truncated_at_the_limit)
+{
+    struct scene s = {0};
+    if (!load(&s)) {
+        return;
+    }
+    struct trace *t = trace_new(&s, 0, 0);
+    struct stats st = {.trace = t};
+    trace_pass_begin(t, 0);
+    trace_sample(&st, 0, 0.5, 0.5, (ray){{0, 0, 5}, {0, 0, -1}});
+    for (int i = 0; i < 200000; i++) {
+        trace_end(&st, "again");
+    }
+    trace_pass_end(t, vec3_splat(0));
+    char *json = written(t, true);
+    char *text = written(t, false);
+    CHECK(json && strstr(json, "\"truncated\": true"));
+    CHECK(text && strstr(text, "(truncated: only the first 131072 events were kept)"));
+    free(json);
+    free(text);
+    trace_free(t);
+    scene_free(&s);
+}
+
+TEST(no_recorder_no_events)
+{
+    struct stats st = {0};
+    ray r = {{0, 0, 0}, {0, 0, 1}};
+    CHECK(!tracing(&st));
+    trace_sample(&st, 0, 0, 0, r);
+    trace_miss(&st, 1, r, vec3_splat(1));
+    trace_end(&st, "nothing");
+    CHECK(st.trace == NULL && st.rays_camera == 0);
+}
+
+TEST_MAIN(
+    TEST_ENTRY(traced_pixel_is_the_rendered_pixel),
+    TEST_ENTRY(names_by_line),
+    TEST_ENTRY(offsets_are_measured_from_the_spawning_hit),
+    TEST_ENTRY(truncated_at_the_limit),
+    TEST_ENTRY(no_recorder_no_events))
