@@ -285,7 +285,8 @@ trace_nee(struct stats *st, vec3 radiance)
 
 /* Multiple importance sampling of a shadow ray against the bounce: the
  * densities per steradian with which the light sample and the BSDF would
- * draw its direction, and the weight given to the shadow ray (recorded
+ * draw its direction, and the weight given to the shadow ray; or, after
+ * an emission found by a diffuse bounce, the bounce's weight (recorded
  * where pdf_bsdf > 0: elsewhere the weight is 1). */
 static inline void
 trace_mis(struct stats *st, real pdf_light, real pdf_bsdf, real weight)

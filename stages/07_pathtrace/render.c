@@ -128,15 +128,21 @@ emitted(const struct renderer *renderer, const struct hit *h, const struct path 
 
 /* The light a diffuse bounce found, with MIS: Le weighted against the
  * shadow rays of the vertex it left (path->from), which could have drawn
- * the same point with density light_pdf(). */
+ * the same point with density *pdf_light (light_pdf(), per steradian);
+ * *weight is the bounce's power-heuristic weight. */
 static vec3
-emitted_mis(const struct renderer *renderer, const struct hit *h, const struct path *path)
+emitted_mis(
+    const struct renderer *renderer,
+    const struct hit *h,
+    const struct path *path,
+    real *pdf_light,
+    real *weight)
 {
     const struct scene *s = renderer->scene;
-    real pdf_light = light_pdf(s, &renderer->shadow, &renderer->lights, h->light, path->from, h->p);
+    *pdf_light = light_pdf(s, &renderer->shadow, &renderer->lights, h->light, path->from, h->p);
     real samples = (real)renderer->shadow.samples;
-    real weight = mis_power_heuristic(1, path->pdf_bsdf, samples, pdf_light);
-    return vec3_scale(light_emitted(s, h->light, h->front_face), weight);
+    *weight = mis_power_heuristic(1, path->pdf_bsdf, samples, *pdf_light);
+    return vec3_scale(light_emitted(s, h->light, h->front_face), *weight);
 }
 
 /* What a path draws its numbers for at each vertex (the Sobol sampler
@@ -182,9 +188,13 @@ shade(
     const struct scene *s = renderer->scene;
     if (h->light >= 0) {
         /* Lights are black as surfaces (SCENES.md): the path ends here. */
-        vec3 le = path->pdf_bsdf > 0 ? emitted_mis(renderer, h, path) : emitted(renderer, h, path);
+        real pdf_light = 0;
+        real weight = 1;
+        vec3 le = path->pdf_bsdf > 0 ? emitted_mis(renderer, h, path, &pdf_light, &weight)
+                                     : emitted(renderer, h, path);
         vec3 l = vec3_mul(path->beta, le);
         trace_emission(st, l, path->specular);
+        trace_mis(st, pdf_light, path->pdf_bsdf, weight); /* only where MIS weighed it */
         path->beta = vec3_splat(0);
         return l;
     }

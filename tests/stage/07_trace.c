@@ -8,6 +8,10 @@
  *   - each diffuse bounce multiplies the throughput by the albedo (the
  *     weight f cos / pdf of a cosine-weighted direction), and its pdf is a
  *     density cos(theta) / pi <= 1 / pi;
+ *   - a diffuse bounce that hits the light, under MIS, records the
+ *     bounce's weight (a `mis` event after its `emission`: both densities
+ *     positive, the weight in [0, 1] and the power heuristic's), in the
+ *     JSON and the text forms;
  *   - at the rim of a bubble (ior 0.6) the sampled lobe is total internal
  *     reflection, with probability 1;
  *   - --pixel with --time is refused (a replay needs a fixed number of
@@ -15,6 +19,7 @@
  */
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
@@ -24,6 +29,8 @@
 
 #define CAP 4096
 #define MAX_EVENTS 4096
+/* How a `mis` event under an emission begins in the JSON form. */
+#define MIS_EVENT "{\"type\": \"mis\", \"level\": 3,"
 
 /* A closed grey room with an opening, lit from the ceiling. */
 static const char *
@@ -83,6 +90,77 @@ TEST(every_path_ends_once_and_says_why)
     }
 }
 
+/* The room with a light large enough for bounces to hit it often. */
+static const char *
+big_light_scene(void)
+{
+    return stagecheck_scene(
+        "big_light.scene",
+        "camera origin 0 1 3.5 target 0 1 0 up 0 1 0 fov 45\n"
+        "image width 16 height 16\n"
+        "material grey diffuse albedo 0.5 0.5 0.5\n"
+        "quad corner -1 0 -1 edge1 0 0 2 edge2 2 0 0 material grey\n"
+        "quad corner -1 2 -1 edge1 2 0 0 edge2 0 0 2 material grey\n"
+        "quad corner -1 0 -1 edge1 2 0 0 edge2 0 2 0 material grey\n"
+        "quad corner -1 0 -1 edge1 0 2 0 edge2 0 0 2 material grey\n"
+        "quad corner 1 0 -1 edge1 0 0 2 edge2 0 2 0 material grey\n"
+        "area_light corner -0.8 1.98 -0.8 edge1 1.6 0 0 edge2 0 0 1.6 radiance 2 2 2\n");
+}
+
+/* The number after `key` in the text at p, or -1 when the key is absent
+ * before the line's end. */
+static double
+number_in_line(const char *p, const char *key)
+{
+    const char *end = strchr(p, '\n');
+    const char *k = strstr(p, key);
+    return k && (!end || k < end) ? strtod(k + strlen(key), NULL) : -1;
+}
+
+TEST(bounce_hitting_the_light_records_its_mis_weight)
+{
+    const char *const args[] = {"-s", "64", "--shadow-samples", "1", NULL};
+    const char *trace = tracecheck_pixel(big_light_scene(), 8, 10, args);
+    size_t len;
+    char *json = trace ? test_read_file(trace, &len) : NULL;
+    if (!json) {
+        CHECK(false);
+        return;
+    }
+    int found = 0;
+    for (const char *p = strstr(json, "\"found_by\": \"diffuse bounce\""); p;
+         p = strstr(p + 1, "\"found_by\": \"diffuse bounce\"")) {
+        const char *next = strstr(p, "{\"type\": ");
+        bool is_mis = next && strncmp(next, MIS_EVENT, strlen(MIS_EVENT)) == 0;
+        CHECK_MSG(is_mis, "emission #%d of a diffuse bounce has no mis event", found);
+        if (!is_mis) {
+            break;
+        }
+        double pdf_light = number_in_line(next, "\"pdf_light\": ");
+        double pdf_bsdf = number_in_line(next, "\"pdf_bsdf\": ");
+        double weight = number_in_line(next, "\"weight\": ");
+        CHECK(pdf_light > 0 && pdf_bsdf > 0 && weight >= 0 && weight <= 1);
+        /* One shadow ray per vertex and light: the power heuristic
+         * p_bsdf^2 / (p_bsdf^2 + p_light^2). */
+        double power = pdf_bsdf * pdf_bsdf / (pdf_bsdf * pdf_bsdf + pdf_light * pdf_light);
+        CHECK_NEAR(weight, power, 1e-9);
+        found++;
+    }
+    CHECK_MSG(found >= 1, "no diffuse bounce hit the light in 64 samples");
+    free(json);
+    /* The text form says it too, indented under its emission. */
+    const char *const text_args[] =
+        {"-q", "-s", "64", "--shadow-samples", "1", "--pixel", "8,10", "--trace", "-", NULL};
+    static char out[1 << 20];
+    int status = test_render(big_light_scene(), text_args, out, sizeof out);
+    const char *e = strstr(out, "found_by diffuse bounce\n");
+    CHECK_MSG(
+        status == 0 && e
+            && strncmp(e + strlen("found_by diffuse bounce\n"), "        mis  pdf_light ", 23) == 0,
+        "exit %d; the text form has no mis line under a bounce's emission",
+        status);
+}
+
 TEST(max_depth_ends_paths)
 {
     const char *const args[] = {"-s", "4", "--no-rr", "--max-depth", "3", NULL};
@@ -123,6 +201,7 @@ TEST(time_limit_is_refused)
 
 TEST_MAIN(
     TEST_ENTRY(every_path_ends_once_and_says_why),
+    TEST_ENTRY(bounce_hitting_the_light_records_its_mis_weight),
     TEST_ENTRY(max_depth_ends_paths),
     TEST_ENTRY(bubble_rim_samples_total_internal_reflection),
     TEST_ENTRY(time_limit_is_refused))
