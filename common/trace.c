@@ -321,9 +321,10 @@ trace_log_shade(struct trace *t, vec3 albedo, vec3 irradiance, vec3 ambient, vec
 }
 
 void
-trace_log_specular(struct trace *t, const char *event, real fresnel, vec3 weight)
+trace_log_specular(struct trace *t, int depth, const char *event, real fresnel, vec3 weight)
 {
     struct trace_event *e = add_event(t, "specular", 2, SEG_NONE);
+    put_int(e, "depth", FIELD_INT, depth);
     put_text(e, "event", event);
     put_num(e, "fresnel", fresnel);
     put_vec(e, "weight", weight);
@@ -494,6 +495,37 @@ text_field(FILE *f, const struct trace *t, const struct trace_field *field)
     }
 }
 
+/* Whether the stage recursed: in 04-06 a `specular` event spawns the rays
+ * that follow it (07 loops along one path and records `bounce`s). */
+static bool
+is_recursive(const struct trace *t)
+{
+    for (int i = 0; i < t->n_events; i++) {
+        if (strcmp(t->events[i].type, "specular") == 0) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* How many recursions deep the events from e on are: the depth - 1 of
+ * e's ray when e is a hit, a miss or a specular decision (which follows
+ * the branch it spawned off, once that has returned), 0 at a new sample,
+ * else as before. */
+static int
+recursion_depth(const struct trace_event *e, int before)
+{
+    if (e->level == 0) {
+        return 0;
+    }
+    for (int k = 0; k < e->n_fields; k++) {
+        if (strcmp(e->fields[k].key, "depth") == 0) {
+            return e->fields[k].i > 1 ? (int)e->fields[k].i - 1 : 0;
+        }
+    }
+    return before;
+}
+
 void
 trace_write_text(FILE *f, const struct trace *t)
 {
@@ -506,13 +538,18 @@ trace_write_text(FILE *f, const struct trace *t)
     }
     fprintf(f, "%s\n", t->n_passes > 8 ? " ..." : "");
     int pass = -1;
+    bool nest = is_recursive(t);
+    int depth = 0;
     for (int i = 0; i < t->n_events; i++) {
         const struct trace_event *e = &t->events[i];
         if (e->pass != pass) {
             pass = e->pass;
             fprintf(f, "pass %d\n", pass);
         }
-        fprintf(f, "%*s%s", 2 + 2 * e->level, "", e->type);
+        /* A recursive stage's spawned ray sits one step under the
+         * `specular` event (level 2) that spawned it. */
+        depth = nest ? recursion_depth(e, depth) : 0;
+        fprintf(f, "%*s%s", 2 + 2 * e->level + 4 * depth, "", e->type);
         for (int k = 0; k < e->n_fields; k++) {
             text_field(f, t, &e->fields[k]);
         }

@@ -92,7 +92,7 @@ void trace_log_light_sample(
     vec3 irradiance);
 void trace_log_adaptive(struct trace *t, int probes, int blocked, int more);
 void trace_log_shade(struct trace *t, vec3 albedo, vec3 irradiance, vec3 ambient, vec3 radiance);
-void trace_log_specular(struct trace *t, const char *event, real fresnel, vec3 weight);
+void trace_log_specular(struct trace *t, int depth, const char *event, real fresnel, vec3 weight);
 void trace_log_bounce(
     struct trace *t,
     const char *lobe,
@@ -248,12 +248,13 @@ trace_shade(struct stats *st, vec3 albedo, vec3 irradiance, vec3 ambient, vec3 r
 }
 
 /* A specular decision ("mirror", "reflect", "refract", "total internal
- * reflection") with its Fresnel term and the weight of the ray it spawns. */
+ * reflection") at a hit of this depth, with its Fresnel term and the
+ * weight of the ray it spawns. */
 static inline void
-trace_specular(struct stats *st, const char *event, real fresnel, vec3 weight)
+trace_specular(struct stats *st, int depth, const char *event, real fresnel, vec3 weight)
 {
     if (st->trace) {
-        trace_log_specular(st->trace, event, fresnel, weight);
+        trace_log_specular(st->trace, depth, event, fresnel, weight);
     }
 }
 

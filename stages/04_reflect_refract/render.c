@@ -84,11 +84,11 @@ shade_glass(
     vec3 n = vec3_dot(r.d, h->n) < 0 ? h->n : h->ng;
     real eta = h->front_face ? 1 / m->ior : m->ior;
     real f = fresnel_dielectric(-vec3_dot(r.d, n), eta);
-    trace_specular(st, f < 1 ? "reflect" : "total internal reflection", f, vec3_splat(f));
+    trace_specular(st, depth, f < 1 ? "reflect" : "total internal reflection", f, vec3_splat(f));
     vec3 l = vec3_scale(trace_on(renderer, h, reflect(r.d, n), depth, rng, st), f);
     vec3 refracted;
     if (f < 1 && refract(r.d, n, eta, &refracted)) {
-        trace_specular(st, "refract", f, vec3_splat(1 - f));
+        trace_specular(st, depth, "refract", f, vec3_splat(1 - f));
         l = vec3_madd(l, trace_on(renderer, h, refracted, depth, rng, st), 1 - f);
     }
     return l;
@@ -122,7 +122,7 @@ shade(
         trace_shade(st, albedo, e, s->ambient, l);
     }
     if (m->kind == MAT_MIRROR || m->kind == MAT_BLEND) {
-        trace_specular(st, "mirror", NAN, m->reflectance);
+        trace_specular(st, depth, "mirror", NAN, m->reflectance);
         vec3 mirrored = trace_on(renderer, h, reflect(r.d, h->n), depth, rng, st);
         l = vec3_add(l, vec3_mul(m->reflectance, mirrored));
     } else if (m->kind == MAT_GLASS) {

@@ -8,6 +8,11 @@
  *     by the scene file's lines;
  *   - the text form rounds and prints a number that is not one as "n/a",
  *     the JSON form prints it as null and every other number exactly;
+ *   - the text form indents a recursive stage's spawned rays (after a
+ *     `specular` event) by their depth, under the event that spawned
+ *     them, and a decision of the parent's after the branch returned back
+ *     at the parent's depth; a trace without `specular`
+ *     events (07's loop) is not indented by depth;
  *   - the recorder stops at its limit and says the trace is truncated;
  *   - no recorder, no cost: the trace_* calls with st->trace NULL do
  *     nothing.
@@ -124,7 +129,7 @@ TEST(names_by_line)
         trace_hit(&st, 1 + prim, r, 1, n, prim, prim == 2 ? 1 : 0, n, n, prim != 1);
     }
     trace_light(&st, TRACE_POINT_LIGHT, 0);
-    trace_specular(&st, "mirror", NAN, vec3_splat(0.5));
+    trace_specular(&st, 1, "mirror", NAN, vec3_splat(0.5));
     trace_pass_end(t, vec3_splat(1));
     char *json = written(t, true);
     char *text = written(t, false);
@@ -173,6 +178,94 @@ TEST(offsets_are_measured_from_the_spawning_hit)
     scene_free(&s);
 }
 
+/* The indentation of the first line from *from on that begins, past its
+ * spaces, with `what`; *from moves past that line.  -1 if none. */
+static int
+indent_of(const char **from, const char *what)
+{
+    for (const char *line = *from; *line;) {
+        int n = (int)strspn(line, " ");
+        const char *end = strchr(line, '\n');
+        if (strncmp(line + n, what, strlen(what)) == 0) {
+            *from = end ? end + 1 : line + strlen(line);
+            return n;
+        }
+        if (!end) {
+            break;
+        }
+        line = end + 1;
+    }
+    return -1;
+}
+
+/* A glass hit whose reflected ray (depth 2) reflects again (depth 3), then
+ * the refracted ray of the first hit (depth 2 again); with `specular`
+ * events when `recursive`, else with 07's `bounce`s. */
+static char *
+nested_text(const struct scene *s, bool recursive)
+{
+    struct trace *t = trace_new(s, 0, 0);
+    struct stats st = {.trace = t};
+    vec3 n = {0, 1, 0};
+    ray r = {{0, 0, 5}, {0, 0, -1}};
+    trace_pass_begin(t, 0);
+    trace_sample(&st, 0, 0.5, 0.5, r);
+    int depths[] = {1, 2, 3, 2};
+    for (int i = 0; i < 4; i++) {
+        trace_hit(&st, depths[i], r, 1, (vec3){0, 0, 0}, 0, 0, n, n, true);
+        if (recursive) {
+            trace_specular(&st, depths[i], "reflect", 0.04, vec3_splat(0.04));
+        } else {
+            trace_bounce(&st, "diffuse", n, 0.3, vec3_splat(1), vec3_splat(0.5));
+        }
+    }
+    if (recursive) {
+        /* Back at the first hit, after its reflected branch: refraction. */
+        trace_specular(&st, 1, "refract", 0.04, vec3_splat(0.96));
+    }
+    trace_pass_end(t, vec3_splat(0));
+    char *text = written(t, false);
+    trace_free(t);
+    return text;
+}
+
+TEST(text_indents_by_recursion_depth)
+{
+    struct scene s = {0};
+    if (!load(&s)) {
+        return;
+    }
+    char *text = nested_text(&s, true);
+    const char *at = text ? text : "";
+    int hit1 = indent_of(&at, "hit  depth 1");
+    int spec1 = indent_of(&at, "specular");
+    int hit2 = indent_of(&at, "hit  depth 2");
+    int spec2 = indent_of(&at, "specular");
+    int hit3 = indent_of(&at, "hit  depth 3");
+    int hit2b = indent_of(&at, "hit  depth 2");
+    int refract = indent_of(&at, "specular  depth 1  event refract");
+    CHECK_MSG(
+        hit1 == 4 && spec1 == 6 && hit2 == 8 && spec2 == 10 && hit3 == 12 && hit2b == 8
+            && refract == 6,
+        "indents %d %d %d %d %d %d %d\n%s",
+        hit1,
+        spec1,
+        hit2,
+        spec2,
+        hit3,
+        hit2b,
+        refract,
+        text ? text : "");
+    free(text);
+    text = nested_text(&s, false);
+    at = text ? text : "";
+    int flat1 = indent_of(&at, "hit  depth 1");
+    int flat3 = indent_of(&at, "hit  depth 3");
+    CHECK_MSG(flat1 == 4 && flat3 == 4, "a loop's path is not nested: %d %d", flat1, flat3);
+    free(text);
+    scene_free(&s);
+}
+
 TEST(truncated_at_the_limit)
 {
     struct scene s = {0};
@@ -212,5 +305,6 @@ TEST_MAIN(
     TEST_ENTRY(traced_pixel_is_the_rendered_pixel),
     TEST_ENTRY(names_by_line),
     TEST_ENTRY(offsets_are_measured_from_the_spawning_hit),
+    TEST_ENTRY(text_indents_by_recursion_depth),
     TEST_ENTRY(truncated_at_the_limit),
     TEST_ENTRY(no_recorder_no_events))
