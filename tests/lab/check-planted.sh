@@ -52,9 +52,15 @@ refs=$root/tests/reference
 work=$(mktemp -d "${TMPDIR:-/tmp}/planted.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 trap 'exit 1' HUP INT TERM
-# The plain build (a make sanitize run passes its variables in MAKEFLAGS:
-# none of them here, where the copies link build/common).
-MAKEFLAGS= ${MAKE:-make} --no-print-directory -C "$root" all >"$work/log" 2>&1 ||
+# plain_make ARGS...: make of the plain build, whatever variant called us
+# (make sanitize or REAL=float pass theirs in MAKEFLAGS and, being set on
+# the command line, in the environment: none of them here, where the copies
+# link build/common).
+plain_make() {
+    env -u SANITIZE -u REAL -u FUZZ -u BUILDROOT -u VARIANT MAKEFLAGS= \
+        ${MAKE:-make} --no-print-directory "$@"
+}
+plain_make -C "$root" all >"$work/log" 2>&1 ||
     die "the project does not build: $(tail -n 5 "$work/log")"
 
 passed=0
@@ -87,7 +93,7 @@ plant() {
             >"$work/log"
         return 1
     fi
-    MAKEFLAGS= ${MAKE:-make} --no-print-directory -C "$pl_tree/stages/$pl_stage" >"$work/log" 2>&1
+    plain_make -C "$pl_tree/stages/$pl_stage" >"$work/log" 2>&1
 }
 
 # renders PROGRAM SCENE OUT OPTIONS...: OUT.1.pfm and OUT.2.pfm, seeds 1
