@@ -32,12 +32,13 @@
 /* How a `mis` event under an emission begins in the JSON form. */
 #define MIS_EVENT "{\"type\": \"mis\", \"level\": 3,"
 
-/* A closed grey room with an opening, lit from the ceiling. */
+/* A closed grey room with an opening, lit from the ceiling by a square
+ * light of side 2 * half centred under it, of radiance L. */
 static const char *
-room_scene(void)
+lit_room_scene(const char *name, double half, double radiance)
 {
     return stagecheck_scene(
-        "room.scene",
+        name,
         "camera origin 0 1 3.5 target 0 1 0 up 0 1 0 fov 45\n"
         "image width 16 height 16\n"
         "material grey diffuse albedo 0.5 0.5 0.5\n"
@@ -46,7 +47,21 @@ room_scene(void)
         "quad corner -1 0 -1 edge1 2 0 0 edge2 0 2 0 material grey\n"
         "quad corner -1 0 -1 edge1 0 2 0 edge2 0 0 2 material grey\n"
         "quad corner 1 0 -1 edge1 0 0 2 edge2 0 2 0 material grey\n"
-        "area_light corner -0.3 1.98 -0.3 edge1 0.6 0 0 edge2 0 0 0.6 radiance 10 10 10\n");
+        "area_light corner %g 1.98 %g edge1 %g 0 0 edge2 0 0 %g radiance %g %g %g\n",
+        -half,
+        -half,
+        2 * half,
+        2 * half,
+        radiance,
+        radiance,
+        radiance);
+}
+
+/* The room with a small bright light. */
+static const char *
+room_scene(void)
+{
+    return lit_room_scene("room.scene", 0.3, 10);
 }
 
 TEST(every_path_ends_once_and_says_why)
@@ -94,17 +109,7 @@ TEST(every_path_ends_once_and_says_why)
 static const char *
 big_light_scene(void)
 {
-    return stagecheck_scene(
-        "big_light.scene",
-        "camera origin 0 1 3.5 target 0 1 0 up 0 1 0 fov 45\n"
-        "image width 16 height 16\n"
-        "material grey diffuse albedo 0.5 0.5 0.5\n"
-        "quad corner -1 0 -1 edge1 0 0 2 edge2 2 0 0 material grey\n"
-        "quad corner -1 2 -1 edge1 2 0 0 edge2 0 0 2 material grey\n"
-        "quad corner -1 0 -1 edge1 2 0 0 edge2 0 2 0 material grey\n"
-        "quad corner -1 0 -1 edge1 0 2 0 edge2 0 0 2 material grey\n"
-        "quad corner 1 0 -1 edge1 0 0 2 edge2 0 2 0 material grey\n"
-        "area_light corner -0.8 1.98 -0.8 edge1 1.6 0 0 edge2 0 0 1.6 radiance 2 2 2\n");
+    return lit_room_scene("big_light.scene", 0.8, 2);
 }
 
 /* The number after `key` in the text at p, or -1 when the key is absent
