@@ -13,7 +13,10 @@
 
 CC ?= cc
 CXX ?= c++
-CFLAGS ?= -O2 -g
+# -O3: the same results bit for bit as -O2 (no fast-math), and 16% fewer
+# instructions for stage 07 on the Cornell boxes (callgrind; more inlining
+# of the intersection loops), 3.5% on the bunny.
+CFLAGS ?= -O3 -g
 CXXFLAGS ?= -O2 -g
 PKG_CONFIG ?= pkg-config
 
