@@ -358,7 +358,8 @@ check_stage() {
                 result ok "$cs_stage" "earlier: the earlier stages' tests pass in the handout ($(field "$cs_g" earlier_total) tests)"
             else
                 result FAIL "$cs_stage" "earlier: earlier stages' tests fail in the handout: a stub breaks more than lab $cs_nn $cs_log"
-                grade_failures "$cs_logs/grade-untouched.log"
+                { grep '^note:' "$cs_logs/grade-untouched.log" || true; earlier_failures "$cs_logs/grade-untouched.log"; } |
+                    head -n 20 | detail
             fi
         fi
     else

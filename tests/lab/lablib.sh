@@ -222,16 +222,45 @@ test_statuses() {
 # each of their TEST()s.  Those with status ok are the lab's controls: they
 # pass without the student's work, so grade.sh shows them and does not
 # score them.  The programs' logs go to LOGDIR.
+# A program that crashed or timed out is run again one TEST() at a time,
+# and each TEST() has the status of its own run: a crash or a time-out
+# fails every TEST() of a program, so which tests pass untouched would
+# otherwise depend on the load of the machine and on the other tests of
+# the program (a stub can make one test slow: lab 05's brute-force
+# traversal takes minutes in a cost test; a busy machine then pushed the
+# whole program past the limit, no control was found, and the grading run
+# that followed, on a quieter machine, scored the control: 6.7% for an
+# untouched handout).  A TEST() that crashes or times out on its own
+# fails without the student's work: not a control.
 handout_controls() {
     hc_stage=$(handout_stage "$1") || die "$1: no stage in stages/"
     mkdir -p "$2"
     for hc_src in $(handout_tests "$1"); do
         [ "$(test_from "$hc_src")" = "${hc_stage%%_*}" ] || continue
         hc_name=$(basename "$hc_src" .c)
-        set -- "$1" "$2" "$3" $(run_handout_test "$1" "$hc_src" "$2/$hc_name.log" "$3")
-        test_statuses "$hc_src" "$2/$hc_name.log" "$8" | sed "s/^/$hc_name /"
-        set -- "$1" "$2" "$3"
+        hc_note=$(run_handout_test "$1" "$hc_src" "$2/$hc_name.log" "$3" | awk '{ print $5 }')
+        case $hc_note in
+            crashed | timed-out)
+                for hc_test in $(test_names "$hc_src"); do
+                    hc_log=$2/$hc_name.$hc_test.log
+                    hc_note=$(run_handout_test "$1" "$hc_src" "$hc_log" "$3" "$hc_test" | awk '{ print $5 }')
+                    test_statuses "$hc_src" "$hc_log" "$hc_note" | awk -v t="$hc_test" '$1 == t' |
+                        sed "s/^/$hc_name /"
+                done
+                ;;
+            *) test_statuses "$hc_src" "$2/$hc_name.log" "$hc_note" | sed "s/^/$hc_name /" ;;
+        esac
     done
+}
+
+# earlier_failures REPORT - the lines of a grade report (grade.awk) that
+# name failing programs of earlier stages: those of its "earlier:" groups
+# whose tests did not all pass; the lab's own group is left out (its tests
+# fail in an untouched handout, as they must).
+earlier_failures() {
+    awk '/^earlier: / { earlier = 1; next }
+        /^[^ ]/ { earlier = 0 }
+        earlier && $1 != "total" && split($2, pt, "/") == 2 && pt[1] != pt[2]' "$1"
 }
 
 # handout_differences A B - the files (paths relative to the handouts) that

@@ -652,11 +652,42 @@ test_grade_score() {
     else
         fail grade/controls-not-scored "got:  $got" "want: $want" "$(cat "$T/report")"
     fi
+    # check-labs' "earlier" detail: the earlier groups' failing programs,
+    # not the lab's own (05_x and 05-06_y fail above too).
+    earlier_failures "$T/report" | sed 's/  */ /g' >"$T/earlier"
+    printf ' 01_z 1/2 failed: a\n' >"$T/earlier.expected"
+    same grade/earlier-failures "$T/earlier.expected" "$T/earlier"
     got=$(gr 'P|05|05_x|-' 'T|05|05_x|a|ok')
     case $got in
         *'controls: none'*'|') ok grade/no-controls ;;
         *) fail grade/no-controls "$got" ;;
     esac
+}
+
+# --- controls: handout_controls (lablib.sh) ---------------------------------
+# A program that crashes or times out as a whole is run again one TEST() at
+# a time: which tests pass untouched must not depend on the machine's load
+# or on a slow sibling test.  The "program" is a script: run whole, it
+# prints "ok   a" and dies without a result line; run with a TEST()'s
+# name, a passes, b fails, c hangs past the limit (1 s).
+test_controls() {
+    ct=$T/controls-handout
+    mkdir -p "$ct/stages/05_x" "$ct/tests/stage" "$ct/build/tests/05_x"
+    printf 'TEST(a) {}\nTEST(b) {}\nTEST(c) {}\n' >"$ct/tests/stage/05_x.c"
+    printf 'TEST(z) {}\n' >"$ct/tests/stage/01_z.c"
+    cat >"$ct/build/tests/05_x/05_x" <<'EOF2'
+#!/bin/sh
+case ${1:-} in
+    '') echo 'ok   a'; kill -s SEGV $$ ;;
+    a) printf 'ok   a\n1 passed, 0 failed, 0 skipped\n' ;;
+    b) printf 'FAIL b\n0 passed, 1 failed, 0 skipped\n'; exit 1 ;;
+    c) exec sleep 5 ;;
+esac
+EOF2
+    chmod +x "$ct/build/tests/05_x/05_x"
+    handout_controls "$ct" "$T/controls-logs" 1 >"$T/controls" 2>/dev/null
+    printf '05_x a ok\n05_x b FAIL\n05_x c FAIL\n' >"$T/controls.expected"
+    same controls/crashed-program-rerun-per-test "$T/controls.expected" "$T/controls"
 }
 
 test_markers
@@ -675,6 +706,7 @@ if command -v git >/dev/null 2>&1; then
     test_branches
 fi
 test_grade_score
+test_controls
 test_grade_pages
 test_docs_images
 test_help

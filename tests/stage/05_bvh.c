@@ -932,8 +932,20 @@ TEST(cost_grows_as_log_n)
             visits[k],
             tests[k],
             hits[k]);
-        CHECK(tests[k] < s.n_triangles / 20.0);
+        bool bounded = tests[k] < s.n_triangles / 20.0;
+        CHECK_MSG(
+            bounded,
+            "%.1f triangles tested per ray, not under 1/20 of the %d",
+            tests[k],
+            s.n_triangles);
         scene_free(&s);
+        if (!bounded) {
+            /* Over the bound at 1k already (brute force, a handout's stub,
+             * tests them all): at 1M the same traversal would test up to
+             * 4096 x 1e6 triangles (minutes) and fail the same bound. */
+            printf("  the 1M sphere is not rendered: the 1k one already fails\n");
+            return;
+        }
     }
     printf("  ratio of boxes tested, 1M / 1k triangles: %.2f\n", visits[1] / visits[0]);
     CHECK(hits[0] > 1000 && hits[1] > 1000);
