@@ -278,16 +278,19 @@ TEST(grid_samples_the_cell_centres)
 /* A checkerboard plane filling the view of a 64x64 camera, one scene unit
  * per pixel (fov 90 at distance 32), squares of 0.127 units, albedos 0.9
  * and 0.1.  Lit so that a square's radiance is its albedo in every stage:
- * ambient 1 in the Whitted stages (L = albedo * ambient), a white
- * environment in the path tracer (a plane sees only the sky: L = albedo *
- * 1, every sample exactly). */
+ * a point light 1e5 units away on the axis, behind the camera, of
+ * intensity pi 1e10, so E = I cos / r^2 = pi (to 3e-7 over the view) and
+ * L = albedo / pi E = albedo.  Direct light only, the same in the Whitted
+ * stages and in the path tracer (the plane sees only a black sky): the
+ * pattern the camera samples does not depend on stage 07's own lab (BSDF
+ * sampling), whose stubs end every path at its first hit. */
 static const char checker_scene[] =
     "camera origin 0 0 0 target 0 0 -1 up 0 1 0 fov 90\n"
     "image width 64 height 64\n"
-    "background color 1 1 1\n"
-    "ambient color 1 1 1\n"
     "material board checker albedo 0.9 0.9 0.9 albedo2 0.1 0.1 0.1 size 0.127\n"
-    "quad corner -100 -100 -32 edge1 200 0 0 edge2 0 200 0 material board\n";
+    "quad corner -100 -100 -32 edge1 200 0 0 edge2 0 200 0 material board\n"
+    "point_light position 0 0 99968 intensity 31415926535.897932 31415926535.897932 "
+    "31415926535.897932\n";
 
 #define CHECKER_MEAN 0.5 /* (0.9 + 0.1) / 2 */
 
