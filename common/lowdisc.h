@@ -43,20 +43,27 @@ lowdisc_reverse_bits(uint32_t x)
     return x;
 }
 
-/* Owen's nested scramble of the binary fraction x / 2^32 by seed.  In the
- * reversed bits, adding the seed and xoring with multiples of x by even
- * constants change each bit by a function of the bits below it only, and
- * every step is invertible (the constants are Burley's, 2020). */
+/* Owen's nested scramble done on the reversed bits r of a binary fraction
+ * (its first digit the lowest bit of r): adding the seed and xoring with
+ * multiples of r by even constants change each bit by a function of the
+ * bits below it only, and every step is invertible (the constants are
+ * Burley's, 2020). */
+static inline uint32_t
+lowdisc_scramble_reversed(uint32_t r, uint32_t seed)
+{
+    r += seed;
+    r ^= r * 0x6c50b47cu;
+    r ^= r * 0xb82f1e52u;
+    r ^= r * 0xc7afe638u;
+    r ^= r * 0x8d22f6e6u;
+    return r;
+}
+
+/* Owen's nested scramble of the binary fraction x / 2^32 by seed. */
 static inline uint32_t
 lowdisc_owen_scramble(uint32_t x, uint32_t seed)
 {
-    x = lowdisc_reverse_bits(x);
-    x += seed;
-    x ^= x * 0x6c50b47cu;
-    x ^= x * 0xb82f1e52u;
-    x ^= x * 0xc7afe638u;
-    x ^= x * 0x8d22f6e6u;
-    return lowdisc_reverse_bits(x);
+    return lowdisc_reverse_bits(lowdisc_scramble_reversed(lowdisc_reverse_bits(x), seed));
 }
 
 /* The first two Sobol dimensions of point `index`, as 32-bit fractions.
@@ -67,9 +74,10 @@ lowdisc_owen_scramble(uint32_t x, uint32_t seed)
  * 1 when the bits of d are a subset of those of k.  So digit d is the xor
  * of the index bits k that contain d: five xor-shift steps (one per bit of
  * a bit position) sum every bit into the positions it contains, and the
- * result is mirrored like dimension 0. */
+ * result is mirrored like dimension 0.  Here, before the mirroring: the
+ * digits as reversed bits, which is how the scramble takes them. */
 static inline void
-lowdisc_sobol2(uint32_t index, uint32_t *x, uint32_t *y)
+lowdisc_sobol2_reversed(uint32_t index, uint32_t *x, uint32_t *y)
 {
     uint32_t w = index;
     w ^= (w >> 1) & 0x55555555u;
@@ -77,8 +85,17 @@ lowdisc_sobol2(uint32_t index, uint32_t *x, uint32_t *y)
     w ^= (w >> 4) & 0x0f0f0f0fu;
     w ^= (w >> 8) & 0x00ff00ffu;
     w ^= (w >> 16) & 0x0000ffffu;
-    *x = lowdisc_reverse_bits(index);
-    *y = lowdisc_reverse_bits(w);
+    *x = index;
+    *y = w;
+}
+
+/* The same two dimensions as fractions: the reversed digits mirrored. */
+static inline void
+lowdisc_sobol2(uint32_t index, uint32_t *x, uint32_t *y)
+{
+    lowdisc_sobol2_reversed(index, x, y);
+    *x = lowdisc_reverse_bits(*x);
+    *y = lowdisc_reverse_bits(*y);
 }
 
 /* A 32-bit fraction as a real in [0, 1), never rounding up to 1. */
@@ -101,10 +118,12 @@ lowdisc_point2(uint32_t index, uint64_t seed, real *u, real *v)
     uint32_t shuffled = lowdisc_owen_scramble(index, (uint32_t)h);
     uint32_t x;
     uint32_t y;
-    lowdisc_sobol2(shuffled, &x, &y);
+    /* Scrambled in the reversed domain, mirrored once at the end:
+     * reverse(scramble(reverse(reverse(r)))) = reverse(scramble(r)). */
+    lowdisc_sobol2_reversed(shuffled, &x, &y);
     uint64_t h2 = rng_mix64(h);
-    *u = lowdisc_to_real(lowdisc_owen_scramble(x, (uint32_t)(h >> 32)));
-    *v = lowdisc_to_real(lowdisc_owen_scramble(y, (uint32_t)h2));
+    *u = lowdisc_to_real(lowdisc_reverse_bits(lowdisc_scramble_reversed(x, (uint32_t)(h >> 32))));
+    *v = lowdisc_to_real(lowdisc_reverse_bits(lowdisc_scramble_reversed(y, (uint32_t)h2)));
 }
 
 /* Point `index` of the scrambled 1D sequence chosen by seed: a stratified
@@ -114,8 +133,8 @@ lowdisc_point1(uint32_t index, uint64_t seed)
 {
     uint64_t h = rng_mix64(seed);
     uint32_t shuffled = lowdisc_owen_scramble(index, (uint32_t)h);
-    uint32_t x = lowdisc_reverse_bits(shuffled);
-    return lowdisc_to_real(lowdisc_owen_scramble(x, (uint32_t)(h >> 32)));
+    return lowdisc_to_real(
+        lowdisc_reverse_bits(lowdisc_scramble_reversed(shuffled, (uint32_t)(h >> 32))));
 }
 
 #endif /* LOWDISC_H */

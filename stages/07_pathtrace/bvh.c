@@ -469,6 +469,17 @@ struct traversal {
     uint64_t visits, tests;
 };
 
+/* A traversal of r before its first node (the stack is not cleared: it
+ * is read only below top). */
+static void
+traversal_begin(struct traversal *tr, ray r)
+{
+    tr->sr = slab_ray_make(r);
+    tr->top = 0;
+    tr->visits = 0;
+    tr->tests = 0;
+}
+
 /* The root, if the ray meets its box by t_limit; NO_NODE otherwise. */
 static uint32_t
 start(const struct bvh *bvh, struct traversal *tr, real t_limit)
@@ -571,7 +582,8 @@ bvh_intersect(
     struct stats *st)
 {
     struct closest c = {.out = out, .t_box = t_max, .t_prim = t_max};
-    struct traversal tr = {.sr = slab_ray_make(r)};
+    struct traversal tr;
+    traversal_begin(&tr, r);
     uint32_t id = start(bvh, &tr, t_max);
     while (id != NO_NODE) {
         const struct bvh_node *node = &bvh->nodes[id];
@@ -611,7 +623,8 @@ any_in_leaf(
 bool
 bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, struct stats *st)
 {
-    struct traversal tr = {.sr = slab_ray_make(r)};
+    struct traversal tr;
+    traversal_begin(&tr, r);
     bool hit = false;
     uint32_t id = start(bvh, &tr, t_max);
     while (id != NO_NODE && !hit) {

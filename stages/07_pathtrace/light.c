@@ -5,6 +5,7 @@
  */
 #include "light.h"
 
+#include "lowdisc.h"
 #include "trace.h"
 
 #include <stdlib.h>
@@ -183,9 +184,11 @@ fold_into_triangle(const struct area_light *light, real *u, real *v)
  * point's density is 1 / Omega, and a stratified (u, v) gives stratified
  * directions. */
 
-/* A solid angle this small is computed as a difference of angles of about
- * 2 pi with too much cancellation (a relative error of 2 pi REAL_EPSILON /
- * Omega): such a light, small or far, is sampled by area instead, where
+/* A solid angle this small is computed with too large a relative error
+ * (it is the angle of a product of four unit complex numbers, near 1 for a
+ * small light, to an absolute error of a few REAL_EPSILON: a relative one
+ * of about 2 pi REAL_EPSILON / Omega): such a light, small or far, is
+ * sampled by area instead, where
  * 1 / Omega would be less accurate than the area density it would replace.
  * 2^16 REAL_EPSILON keeps that error below 1e-4 (a float build falls back
  * under 8e-3 sr, a double one under 1.5e-11 sr). */
@@ -202,7 +205,7 @@ struct spherical_rect {
     vec3 ex, ey, ez; /* the frame: along edge1, along edge2, towards the light's plane */
     real x0, x1, y0, y1, z0; /* the rectangle in that frame, z0 < 0 */
     real b0, b1; /* the z components of n0 and n2 */
-    real k; /* 2 pi - g2 - g3 */
+    real cos_k, sin_k; /* of the paper's k = 2 pi - g2 - g3 */
     real solid_angle; /* Omega, steradians */
 };
 
@@ -212,16 +215,39 @@ clamp_real(real x, real lo, real hi)
     return fmin(fmax(x, lo), hi);
 }
 
-/* The interior angle between the planes of unit normals a and b. */
-static real
+/* An angle as a unit complex number (cos, sin): adding angles multiplies
+ * them, which needs no trigonometric function. */
+struct turn {
+    real c, s;
+};
+
+static struct turn
+turn_add(struct turn a, struct turn b)
+{
+    return (struct turn){a.c * b.c - a.s * b.s, a.s * b.c + a.c * b.s};
+}
+
+/* The interior angle between the planes of unit normals a and b, in
+ * [0, pi]: cosine -a.b, sine |a x b| (no cancellation for angles near 0
+ * or pi, where 1 - cos^2 would lose the sine's digits). */
+static struct turn
 corner_angle(vec3 a, vec3 b)
 {
-    return acos(clamp_real(-vec3_dot(a, b), -1, 1));
+    return (struct turn){-vec3_dot(a, b), vec3_length(vec3_cross(a, b))};
 }
 
 /* The spherical rectangle of the light seen from x.  False when the light
  * is no rectangle, x lies in its plane, or its solid angle is under
- * RECT_SOLID_ANGLE_MIN (or not finite). */
+ * RECT_SOLID_ANGLE_MIN (or not finite).
+ *
+ * The paper takes the four angles g_i with inverse cosines; here they stay
+ * (cos, sin) pairs, added by complex multiplication, and one atan2 gives
+ * Omega = g0 + g1 + g2 + g3 - 2 pi, the angle of their product.  That
+ * angle is known modulo 2 pi: Omega in (0, 2 pi) is the atan2 result, or
+ * that plus 2 pi when it is negative.  Only a light of solid angle within
+ * rounding of 0 or 2 pi is ambiguous; a rectangle subtends at most
+ * A / z0^2 (every point is at least |z0| away), which tells a tiny one from
+ * a huge one. */
 static bool
 spherical_rect_make(const struct area_light *light, vec3 x, struct spherical_rect *sr)
 {
@@ -257,14 +283,21 @@ spherical_rect_make(const struct area_light *light, vec3 x, struct spherical_rec
     vec3 n1 = vec3_normalize((vec3){-z0, 0, sr->x1});
     vec3 n2 = vec3_normalize((vec3){0, -z0, sr->y1});
     vec3 n3 = vec3_normalize((vec3){z0, 0, -sr->x0});
-    real g0 = corner_angle(n0, n1);
-    real g1 = corner_angle(n1, n2);
-    real g2 = corner_angle(n2, n3);
-    real g3 = corner_angle(n3, n0);
+    struct turn g01 = turn_add(corner_angle(n0, n1), corner_angle(n1, n2));
+    struct turn g23 = turn_add(corner_angle(n2, n3), corner_angle(n3, n0));
+    struct turn sum = turn_add(g01, g23);
     sr->b0 = n0.z;
     sr->b1 = n2.z;
-    sr->k = 2 * PI - g2 - g3;
-    sr->solid_angle = g0 + g1 + g2 + g3 - 2 * PI;
+    sr->cos_k = g23.c; /* cos(2 pi - a) = cos(a), sin(2 pi - a) = -sin(a) */
+    sr->sin_k = -g23.s;
+    real omega = atan2(sum.s, sum.c);
+    if (omega < 0) {
+        omega += 2 * PI;
+    }
+    if (omega > PI && len1 * len2 < PI * z0 * z0) {
+        return false; /* a tiny Omega rounded below 0: too small anyway */
+    }
+    sr->solid_angle = omega;
     return sr->solid_angle >= RECT_SOLID_ANGLE_MIN && sr->solid_angle <= 2 * PI;
 }
 
@@ -275,9 +308,12 @@ spherical_rect_make(const struct area_light *light, vec3 x, struct spherical_rec
 static vec3
 spherical_rect_point(const struct spherical_rect *sr, real u, real v)
 {
-    /* xu: the line whose part [x0, xu] has the solid angle u Omega. */
-    real au = u * sr->solid_angle + sr->k;
-    real fu = (cos(au) * sr->b0 - sr->b1) / sin(au);
+    /* xu: the line whose part [x0, xu] has the solid angle u Omega.  The
+     * paper's angle au = u Omega + k, by its cosine and sine. */
+    struct turn au = turn_add(
+        (struct turn){cos(u * sr->solid_angle), sin(u * sr->solid_angle)},
+        (struct turn){sr->cos_k, sr->sin_k});
+    real fu = (au.c * sr->b0 - sr->b1) / au.s;
     real cu = copysign((real)1, fu) / sqrt(fu * fu + sr->b0 * sr->b0);
     cu = clamp_real(cu, -1, 1);
     real xu = -cu * sr->z0 / safe_sqrt(1 - cu * cu);
@@ -404,15 +440,54 @@ sphere_sample_irradiance(
 }
 
 /* A light the shadow rays sample: an area light or a sphere light (the
- * other NULL). */
+ * other NULL), and its number (area lights, then sphere lights, then the
+ * emitting triangles as one: the Sobol sequences' seeds). */
 struct emitter {
     const struct area_light *area;
     const struct sphere_light *sphere;
+    int number;
 };
 
-/* The sum of n samples of the light's irradiance, one in each cell of a
- * k x m grid over [0,1)^2, the light's area, its solid angle or its cone
- * of directions (jittered stratification: each sample is unbiased, so their
+/* The seed of the Sobol sequences of light `number` at this vertex. */
+static uint64_t
+light_seed(const struct shadow_sampling *sampling, int number)
+{
+    return sampling->lowdisc_seed ^ rng_mix64((uint64_t)number + 1);
+}
+
+/* The uniform numbers (u, v) of shadow ray i of n to a light: with the
+ * Sobol sampler, point lowdisc_index * n + i of the light's own sequence
+ * (the n rays of a vertex are consecutive points of a (0,2)-sequence,
+ * stratified together when n is a power of two, and the pixel's samples
+ * stratify each ray's numbers across the pixel); otherwise a random point
+ * of cell i of a k x m grid (k m = n). */
+static void
+light_sample_numbers(
+    const struct shadow_sampling *sampling,
+    int light,
+    int i,
+    int n,
+    struct rng *rng,
+    real *u,
+    real *v)
+{
+    if (sampling->lowdisc) {
+        lowdisc_point2(
+            sampling->lowdisc_index * (uint32_t)n + (uint32_t)i,
+            light_seed(sampling, light),
+            u,
+            v);
+        return;
+    }
+    int k = strata_columns(n);
+    int m = n / k;
+    *u = ((real)(i % k) + rng_uniform(rng)) / (real)k;
+    *v = ((real)(i / k) + rng_uniform(rng)) / (real)m;
+}
+
+/* The sum of n samples of the light's irradiance, their numbers in [0,1)^2
+ * stratified (light_sample_numbers()) and mapped to the light's area, its
+ * solid angle or its cone of directions (each sample is unbiased, so their
  * mean is, and no two crowd together).  *n_blocked counts the samples the
  * light was blocked for. */
 static vec3
@@ -426,12 +501,11 @@ sum_light_samples(
     struct stats *st,
     int *n_blocked)
 {
-    int k = strata_columns(n);
-    int m = n / k;
     vec3 sum = vec3_splat(0);
     for (int i = 0; i < n; i++) {
-        real u = ((real)(i % k) + rng_uniform(rng)) / (real)k;
-        real v = ((real)(i / k) + rng_uniform(rng)) / (real)m;
+        real u;
+        real v;
+        light_sample_numbers(sampling, light->number, i, n, rng, &u, &v);
         bool blocked;
         vec3 e;
         if (light->area) {
@@ -589,7 +663,14 @@ area_light_irradiance(
     struct rng *rng,
     struct stats *st)
 {
-    return light_irradiance(w, h, &(struct emitter){.area = light}, sampling, rng, st);
+    int number = (int)(light - w->scene->area_lights);
+    return light_irradiance(
+        w,
+        h,
+        &(struct emitter){.area = light, .number = number},
+        sampling,
+        rng,
+        st);
 }
 
 static vec3
@@ -601,7 +682,15 @@ sphere_light_irradiance(
     struct rng *rng,
     struct stats *st)
 {
-    return light_irradiance(w, h, &(struct emitter){.sphere = light}, sampling, rng, st);
+    const struct scene *s = w->scene;
+    int number = s->n_area_lights + (int)(light - s->sphere_lights);
+    return light_irradiance(
+        w,
+        h,
+        &(struct emitter){.sphere = light, .number = number},
+        sampling,
+        rng,
+        st);
 }
 
 /* END LAB */
@@ -772,10 +861,22 @@ triangle_lights_irradiance(
     struct stats *st)
 {
     vec3 sum = vec3_splat(0);
+    int number = w->scene->n_area_lights + w->scene->n_sphere_lights;
     for (int k = 0; k < n; k++) {
-        real u0 = rng_uniform(rng);
-        real u = rng_uniform(rng);
-        real v = rng_uniform(rng);
+        real u0;
+        real u;
+        real v;
+        if (sampling->lowdisc) {
+            /* The pick from a 1D sequence of its own, the point on the
+             * triangle from the 2D one of the picker. */
+            uint32_t index = sampling->lowdisc_index * (uint32_t)n + (uint32_t)k;
+            u0 = lowdisc_point1(index, light_seed(sampling, number + 1));
+            lowdisc_point2(index, light_seed(sampling, number), &u, &v);
+        } else {
+            u0 = rng_uniform(rng);
+            u = rng_uniform(rng);
+            v = rng_uniform(rng);
+        }
         vec3 y;
         real pdf_area;
         int i = light_picker_sample(picker, w->scene, u0, u, v, &y, &pdf_area);

@@ -32,12 +32,19 @@ enum rect_sampling {
  * solid angle with which the path's bounce at this point draws a direction
  * of cosine cos(theta) to the normal, divided by that cosine (P(diffuse
  * lobe) / pi); each shadow ray's light is then weighted against it by the
- * power heuristic.  0: no MIS (weight 1). */
+ * power heuristic.  0: no MIS (weight 1).
+ * lowdisc: with the Sobol sampler (render.c, not with adaptive), shadow ray
+ * i of a vertex draws its numbers from point lowdisc_index * samples + i of
+ * a 2D sequence of its own per light (seeded by lowdisc_seed and the
+ * light's number); otherwise from the pixel's random stream. */
 struct shadow_sampling {
     int samples;
     int adaptive[2];
     int rect;
     real bsdf_pdf_cos;
+    bool lowdisc; /* the Sobol sampler: the rays' numbers from lowdisc.h */
+    uint64_t lowdisc_seed; /* ... from sequences scrambled by this and the light */
+    uint32_t lowdisc_index; /* ... at points lowdisc_index * samples + i */
 };
 
 /* The extra statistics counter: shading points that took the penumbra path. */

@@ -85,6 +85,23 @@ diffuse_lobe_probability(const struct material *m, vec3 albedo)
     return diffuse > 0 ? diffuse / (diffuse + mirror) : 0;
 }
 
+/* What a path draws its numbers for at each vertex (the Sobol sampler
+ * gives each its own sequence). */
+enum draw_use {
+    DRAW_LOBE,
+    DRAW_DIRECTION,
+    DRAW_ROULETTE,
+    DRAW_LIGHT, /* the shadow rays' (light.c derives one sequence per light) */
+};
+
+/* The sequence of one use at one depth: a seed of its own, derived from
+ * the pixel's key. */
+static uint64_t
+draw_seed(const struct path *path, enum draw_use use)
+{
+    return path->id.key ^ rng_mix64(((uint64_t)path->depth << 8) | (uint64_t)use);
+}
+
 /* Next-event estimation: the direct light reaching the diffuse part of the
  * surface at h, by shadow rays to the lights (light.c), times albedo / pi;
  * with MIS, each shadow ray weighted against the diffuse bounce, whose
@@ -95,6 +112,7 @@ direct_light(
     const struct hit *h,
     const struct material *m,
     vec3 albedo,
+    const struct path *path,
     struct rng *rng,
     struct stats *st)
 {
@@ -105,6 +123,13 @@ direct_light(
     }
     if (mis_on(renderer)) {
         sampling.bsdf_pdf_cos = diffuse_lobe_probability(m, albedo) * INV_PI;
+    }
+    if (renderer->sampler == SAMPLER_SOBOL && sampling.adaptive[0] == 0) {
+        /* The adaptive rays' count varies from vertex to vertex: they keep
+         * the random stream. */
+        sampling.lowdisc = true;
+        sampling.lowdisc_seed = draw_seed(path, DRAW_LIGHT);
+        sampling.lowdisc_index = path->id.index;
     }
     vec3 e = direct_irradiance(&renderer->world, h, &sampling, &renderer->lights, rng, st);
     return vec3_scale(vec3_mul(albedo, e), INV_PI);
@@ -145,29 +170,21 @@ emitted_mis(
     return vec3_scale(light_emitted(s, h->light, h->front_face), *weight);
 }
 
-/* What a path draws its numbers for at each vertex (the Sobol sampler
- * gives each its own sequence). */
-enum draw_use {
-    DRAW_LOBE,
-    DRAW_DIRECTION,
-    DRAW_ROULETTE,
-};
-
-/* The sequence of one use at one depth: a seed of its own, derived from
- * the pixel's key. */
-static uint64_t
-draw_seed(const struct path *path, enum draw_use use)
-{
-    return path->id.key ^ rng_mix64(((uint64_t)path->depth << 8) | (uint64_t)use);
-}
-
 /* Three uniform numbers in [0, 1) for this vertex's bounce: u[0] picks
- * the lobe, u[1] and u[2] the direction. */
+ * the lobe, u[1] and u[2] the direction.  The Sobol sampler draws u[0]
+ * only for the materials with a choice to make (glass: reflect or refract;
+ * blend: which lobe); the others never read it. */
 static void
-bounce_numbers(const struct renderer *renderer, const struct path *path, struct rng *rng, real u[3])
+bounce_numbers(
+    const struct renderer *renderer,
+    const struct material *m,
+    const struct path *path,
+    struct rng *rng,
+    real u[3])
 {
     if (renderer->sampler == SAMPLER_SOBOL) {
-        u[0] = lowdisc_point1(path->id.index, draw_seed(path, DRAW_LOBE));
+        bool choice = m->kind == MAT_GLASS || m->kind == MAT_BLEND;
+        u[0] = choice ? lowdisc_point1(path->id.index, draw_seed(path, DRAW_LOBE)) : 0;
         lowdisc_point2(path->id.index, draw_seed(path, DRAW_DIRECTION), &u[1], &u[2]);
         return;
     }
@@ -208,12 +225,12 @@ shade(
     vec3 albedo = diffuse_albedo(m, h);
     vec3 l = vec3_splat(0);
     if (!vec3_is_zero(albedo)) {
-        l = vec3_mul(path->beta, direct_light(renderer, h, m, albedo, rng, st));
+        l = vec3_mul(path->beta, direct_light(renderer, h, m, albedo, path, rng, st));
         trace_nee(st, l);
     }
     struct bsdf_sample bs = {0};
     real u[3];
-    bounce_numbers(renderer, path, rng, u);
+    bounce_numbers(renderer, m, path, rng, u);
     if (!sample_bsdf(m, albedo, h, r->d, u, &bs)) {
         trace_end(st, "no bounce: nothing reflects here, or the direction went below the surface");
         path->beta = vec3_splat(0);
@@ -255,11 +272,15 @@ russian_roulette(struct path *path, int min_depth, real u)
     /* END LAB */
 }
 
-/* The uniform number Russian roulette draws at this vertex. */
+/* The uniform number Russian roulette draws at this vertex.  The Sobol
+ * sampler draws none before the roulette starts (0: unused). */
 static real
 roulette_number(const struct renderer *renderer, const struct path *path, struct rng *rng)
 {
     if (renderer->sampler == SAMPLER_SOBOL) {
+        if (path->depth < renderer->rr_depth) {
+            return 0;
+        }
         return lowdisc_point1(path->id.index, draw_seed(path, DRAW_ROULETTE));
     }
     return rng_uniform(rng);

@@ -15,7 +15,9 @@
  *  - The estimator: the mean of direct_irradiance() with one shadow ray,
  *    at points below, beside and above the triangles, matches the sum
  *    of Lambert's polygon formula over the triangles that face the point
- *    (one-sided ones only from their front): t-tests.
+ *    (one-sided ones only from their front): t-tests, with the numbers
+ *    from the random stream and from the Sobol sampler's sequences
+ *    (shadow_sampling.lowdisc, each estimate scrambled by its own seed).
  * All t-tests and the chi-square test share alpha = 0.01, Sidak-corrected.
  */
 #include <stdlib.h>
@@ -29,8 +31,9 @@
 
 #define N_LIGHTS 3
 #define N_POINTS 3
-/* The chi-square test, one t-test of the solid angle, one per point. */
-#define N_STAT_TESTS (1.0 + 1 + N_POINTS)
+/* The chi-square test, one t-test of the solid angle, one per point and
+ * sampler. */
+#define N_STAT_TESTS (1.0 + 1 + 2 * N_POINTS)
 #define ALPHA 0.01
 
 struct tri {
@@ -237,32 +240,34 @@ TEST(estimate_matches_lambert_formula)
     struct fixture f;
     CHECK(fixture_make(&f));
     struct world w = world_make(&f.s);
-    struct shadow_sampling sampling = {.samples = 1};
     struct stats st = {0};
-    for (int k = 0; k < N_POINTS; k++) {
-        struct hit h = {
-            .p = v3(points[k][0]),
-            .n = v3(points[k][1]),
-            .ng = v3(points[k][1]),
-            .light = -1,
-        };
+    for (int k = 0; k < 2 * N_POINTS; k++) {
+        const double *x = points[k % N_POINTS][0];
+        const double *n = points[k % N_POINTS][1];
+        struct hit h = {.p = v3(x), .n = v3(n), .ng = v3(n), .light = -1};
+        struct shadow_sampling sampling = {.samples = 1, .lowdisc = k >= N_POINTS};
         struct rng rng = rng_make(7103, (uint64_t)k);
         struct stattest_welford e = {0};
         for (int j = 0; j < 200000; j++) {
+            /* Sobol: point j of a sequence scrambled anew each time, so
+             * that the estimates are independent, as the t-test needs. */
+            sampling.lowdisc_seed = rng_mix64(rng_next_u32(&rng));
+            sampling.lowdisc_index = (uint32_t)j;
             vec3 sample = direct_irradiance(&w, &h, &sampling, &f.lp, &rng, &st);
             stattest_welford_add(&e, (double)sample.y);
         }
-        double want = expected_irradiance(points[k][0], points[k][1], 1);
+        double want = expected_irradiance(x, n, 1);
         struct stattest_result t = stattest_t_test_welford_one_sample(&e, want);
         printf(
-            "point %d: E = %.6g +- %.2g, Lambert %.6g: p = %.3g\n",
-            k,
+            "point %d, %s: E = %.6g +- %.2g, Lambert %.6g: p = %.3g\n",
+            k % N_POINTS,
+            sampling.lowdisc ? "sobol" : "independent",
             e.mean,
             sqrt(stattest_welford_var_of_mean(&e)),
             want,
             t.p);
         CHECK(want > 0.01);
-        CHECK_MSG(t.p > level(), "point %d: %g against %g", k, e.mean, want);
+        CHECK_MSG(t.p > level(), "point %d: %g against %g", k % N_POINTS, e.mean, want);
     }
     light_picker_free(&f.lp);
 }
