@@ -77,6 +77,48 @@ pathcheck_render_batches(
     return true;
 }
 
+bool
+pathcheck_render_sized(
+    const char *scene,
+    int size,
+    int spp,
+    const char *const extra[],
+    int k,
+    uint64_t seed0,
+    struct pathcheck_batches *out)
+{
+    enum {
+        MAX_EXTRA = 8
+    };
+
+    char size_text[16];
+    char spp_text[16];
+    snprintf(size_text, sizeof size_text, "%d", size);
+    snprintf(spp_text, sizeof spp_text, "%d", spp);
+    const char *args[6 + MAX_EXTRA + 1] = {"-W", size_text, "-H", size_text};
+    int n = 4;
+    if (spp > 0) {
+        args[n++] = "--spp";
+        args[n++] = spp_text;
+    }
+    for (int i = 0; extra && extra[i]; i++) {
+        if (i == MAX_EXTRA) {
+            printf("pathcheck_render_sized: more than %d extra options\n", MAX_EXTRA);
+            return false;
+        }
+        args[n++] = extra[i];
+    }
+    if (!pathcheck_render_batches(scene, args, k, seed0, out)) {
+        return false;
+    }
+    if (!(out->nan_pixels == 0)) {
+        printf("%s: %.0f NaN pixels in %d renders\n", scene, out->nan_pixels, k);
+        pathcheck_batches_free(out);
+        return false;
+    }
+    return true;
+}
+
 void
 pathcheck_batches_free(struct pathcheck_batches *b)
 {
@@ -326,6 +368,44 @@ pathcheck_block_welch(
         }
     }
     return true;
+}
+
+bool
+pathcheck_sets_agree(
+    const char *what,
+    const struct pathcheck_batches *a,
+    const struct pathcheck_batches *b,
+    int block_size,
+    double level)
+{
+    int width = a->images[0].width;
+    int height = a->images[0].height;
+    int whole_size = width > height ? width : height;
+    struct pathcheck_tally blocks = pathcheck_tally_start();
+    struct pathcheck_tally whole = pathcheck_tally_start();
+    if (!pathcheck_block_welch(a->images, a->k, b->images, b->k, block_size, level, &blocks)
+        || !pathcheck_block_welch(a->images, a->k, b->images, b->k, whole_size, level, &whole)) {
+        return false;
+    }
+    printf(
+        "%s: %zu block tests, min p %.3g, %zu rejected; image mean: min p %.3g, %zu rejected "
+        "(level %.3g)\n",
+        what,
+        blocks.tests,
+        blocks.min_p,
+        blocks.rejected,
+        whole.min_p,
+        whole.rejected,
+        level);
+    return blocks.rejected == 0 && whole.rejected == 0;
+}
+
+double
+pathcheck_sets_agree_tests(int width, int height, int block_size)
+{
+    double across = (width + block_size - 1) / block_size;
+    double down = (height + block_size - 1) / block_size;
+    return 3 * (across * down + 1);
 }
 
 double

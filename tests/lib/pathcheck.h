@@ -72,6 +72,18 @@ bool pathcheck_render_batches(
     struct pathcheck_batches *out);
 void pathcheck_batches_free(struct pathcheck_batches *b);
 
+/* pathcheck_render_batches at size x size pixels, with --spp spp (none when
+ * spp is 0) and the extra options (NULL-terminated, at most 8; may be
+ * NULL).  A render with NaN pixels counts as failed (and says so). */
+bool pathcheck_render_sized(
+    const char *scene,
+    int size,
+    int spp,
+    const char *const extra[],
+    int k,
+    uint64_t seed0,
+    struct pathcheck_batches *out);
+
 /* The mean of k images of one size (out is allocated). */
 bool pathcheck_mean_image(const struct image *images, int k, struct image *out);
 
@@ -142,6 +154,39 @@ bool pathcheck_block_welch(
     int block_size,
     double level,
     struct pathcheck_tally *t);
+
+/* Two sets of renders of one scene (all one size) said to agree:
+ * pathcheck_block_welch over blocks of block_size and over the whole image,
+ * both at `level`.  Prints one line, "<what>: N block tests, min p, R
+ * rejected; image mean: min p, R rejected (level)", and returns whether
+ * nothing was rejected (false also when the sizes differ). */
+bool pathcheck_sets_agree(
+    const char *what,
+    const struct pathcheck_batches *a,
+    const struct pathcheck_batches *b,
+    int block_size,
+    double level);
+
+/* How many p-values one pathcheck_sets_agree makes on width x height
+ * images: every block and the whole image, 3 channels each (for the Sidak
+ * correction of a program's level). */
+double pathcheck_sets_agree_tests(int width, int height, int block_size);
+
+/* The size of the stage-07 tests that compare two sets of renders of a
+ * small scene: images PATHCHECK_SETS_SIZE pixels a side (also as the
+ * string PATHCHECK_SETS_SIZE_ARG for a command line), PATHCHECK_SETS_K
+ * renders per set, blocks of PATHCHECK_SETS_BLOCK.  Under AddressSanitizer
+ * renders are several times slower: smaller sets (valid, less power). */
+#if PATHCHECK_SANITIZED
+#define PATHCHECK_SETS_SIZE 32
+#define PATHCHECK_SETS_SIZE_ARG "32"
+#define PATHCHECK_SETS_K 6
+#else
+#define PATHCHECK_SETS_SIZE 64
+#define PATHCHECK_SETS_SIZE_ARG "64"
+#define PATHCHECK_SETS_K 8
+#endif
+#define PATHCHECK_SETS_BLOCK 16
 
 /* relMSE (metrics.h) of each render against ref, averaged over the k
  * renders; NaN when sizes differ. */

@@ -70,6 +70,22 @@ max_abs(vec3 a)
     return fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
 }
 
+/* The flat shape's corner and its two edges (a quad's as given, a
+ * triangle's from its first corner). */
+static void
+flat_frame(const struct scene *s, enum shape shape, vec3 *o, vec3 *e1, vec3 *e2)
+{
+    if (shape == SHAPE_QUAD) {
+        *o = s->quads[0].corner;
+        *e1 = s->quads[0].edge1;
+        *e2 = s->quads[0].edge2;
+        return;
+    }
+    *o = s->positions[0];
+    *e1 = vec3_sub(s->positions[1], *o);
+    *e2 = vec3_sub(s->positions[2], *o);
+}
+
 /* Distance from p to the shape's true surface (the sphere, or the plane of
  * the flat shape), in long double so that it is exact enough to judge an
  * error bound of a few ulps. */
@@ -85,15 +101,7 @@ surface_distance(const struct scene *s, enum shape shape, vec3 p)
     vec3 o;
     vec3 e1;
     vec3 e2;
-    if (shape == SHAPE_QUAD) {
-        o = s->quads[0].corner;
-        e1 = s->quads[0].edge1;
-        e2 = s->quads[0].edge2;
-    } else {
-        o = s->positions[0];
-        e1 = vec3_sub(s->positions[1], o);
-        e2 = vec3_sub(s->positions[2], o);
-    }
+    flat_frame(s, shape, &o, &e1, &e2);
     long double nx = (long double)e1.y * e2.z - (long double)e1.z * e2.y;
     long double ny = (long double)e1.z * e2.x - (long double)e1.x * e2.z;
     long double nz = (long double)e1.x * e2.y - (long double)e1.y * e2.x;
@@ -178,14 +186,8 @@ random_surface_point(const struct scene *s, enum shape shape, struct rng *rng, v
     vec3 o;
     vec3 e1;
     vec3 e2;
-    if (shape == SHAPE_QUAD) {
-        o = s->quads[0].corner;
-        e1 = s->quads[0].edge1;
-        e2 = s->quads[0].edge2;
-    } else {
-        o = s->positions[0];
-        e1 = vec3_sub(s->positions[1], o);
-        e2 = vec3_sub(s->positions[2], o);
+    flat_frame(s, shape, &o, &e1, &e2);
+    if (shape == SHAPE_TRIANGLE) {
         if (u + v > 1) { /* fold into the triangle ... */
             u = 1 - u;
             v = 1 - v;

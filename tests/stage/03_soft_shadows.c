@@ -204,6 +204,43 @@ light_coverage(int px, int py)
     return inside ? 1 : outside ? -1 : 0;
 }
 
+static bool
+is_light_radiance(const float *p)
+{
+    return p[0] == 12 && p[1] == 10 && p[2] == 8;
+}
+
+static bool
+is_black(const float *p)
+{
+    return p[0] == 0 && p[1] == 0 && p[2] == 0;
+}
+
+static bool
+is_lit(const float *p)
+{
+    return p[0] > 0.01f;
+}
+
+/* The pixels wholly inside the light that fail `inside`, plus those wholly
+ * outside it that fail `outside` (pixels on its edge are not judged). */
+static int
+count_unexpected(
+    const struct image *img,
+    bool (*inside)(const float *),
+    bool (*outside)(const float *))
+{
+    int wrong = 0;
+    for (int py = 0; py < 32; py++) {
+        for (int px = 0; px < 32; px++) {
+            const float *p = image_pixel(img, px, py);
+            int c = light_coverage(px, py);
+            wrong += (c == 1 && !inside(p)) || (c == -1 && !outside(p));
+        }
+    }
+    return wrong;
+}
+
 TEST(light_seen_from_the_front_has_radiance_l)
 {
     struct image img = {0};
@@ -216,18 +253,7 @@ TEST(light_seen_from_the_front_has_radiance_l)
         CHECK(false);
         return;
     }
-    int wrong = 0;
-    for (int py = 0; py < 32; py++) {
-        for (int px = 0; px < 32; px++) {
-            const float *p = image_pixel(&img, px, py);
-            int c = light_coverage(px, py);
-            if (c == 1) {
-                wrong += !(p[0] == 12 && p[1] == 10 && p[2] == 8);
-            } else if (c == -1) {
-                wrong += !(p[0] == 0 && p[1] == 0 && p[2] == 0);
-            }
-        }
-    }
+    int wrong = count_unexpected(&img, is_light_radiance, is_black);
     CHECK_MSG(wrong == 0, "%d pixels are not exactly L inside the light or 0 beside it", wrong);
     image_free(&img);
 }
@@ -244,18 +270,7 @@ TEST(light_seen_from_behind_is_black)
         CHECK(false);
         return;
     }
-    int wrong = 0;
-    for (int py = 0; py < 32; py++) {
-        for (int px = 0; px < 32; px++) {
-            const float *p = image_pixel(&img, px, py);
-            int c = light_coverage(px, py);
-            if (c == 1) {
-                wrong += !(p[0] == 0 && p[1] == 0 && p[2] == 0);
-            } else if (c == -1) {
-                wrong += !(p[0] > 0.01f); /* the floor around it is lit */
-            }
-        }
-    }
+    int wrong = count_unexpected(&img, is_black, is_lit); /* the floor around it is lit */
     CHECK_MSG(wrong == 0, "%d pixels: back of the light not black, or floor not lit", wrong);
     image_free(&img);
 }

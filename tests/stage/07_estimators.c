@@ -40,15 +40,11 @@
 #define SIZE 128
 #define BATCHES 8
 #endif
-/* SIZE as a command-line argument. */
-#define TEXT_(x) #x
-#define TEXT(x) TEXT_(x)
 #define BLOCK 16
 
 /* Per comparison: the blocks and the whole image, 3 channels each.  Eight
  * two-sample comparisons and two against the direct-light reference. */
-#define N_BLOCKS ((SIZE / BLOCK) * (SIZE / BLOCK))
-#define N_STAT_TESTS (10.0 * 3 * (N_BLOCKS + 1))
+#define N_STAT_TESTS (10 * pathcheck_sets_agree_tests(SIZE, SIZE, BLOCK))
 
 static double
 stat_level(void)
@@ -56,8 +52,7 @@ stat_level(void)
     return stattest_sidak(PATHCHECK_ALPHA, N_STAT_TESTS);
 }
 
-/* BATCHES renders at SIZE x SIZE, 16 spp, with `extra` options (NULL-
- * terminated, at most 4). */
+/* BATCHES renders at SIZE x SIZE, 16 spp, with `extra` options. */
 static bool
 render_set(
     const char *scene,
@@ -65,17 +60,7 @@ render_set(
     uint64_t seed,
     struct pathcheck_batches *out)
 {
-    const char *args[16] = {"-W", TEXT(SIZE), "-H", TEXT(SIZE), "--spp", "16"};
-    int n = 6;
-    for (int i = 0; extra && extra[i] && n < 15; i++) {
-        args[n++] = extra[i];
-    }
-    args[n] = NULL;
-    if (!pathcheck_render_batches(test_root_path(scene), args, BATCHES, seed, out)) {
-        return false;
-    }
-    CHECK_MSG(out->nan_pixels == 0, "%s: %.0f NaN pixels", scene, out->nan_pixels);
-    return true;
+    return pathcheck_render_sized(test_root_path(scene), SIZE, 16, extra, BATCHES, seed, out);
 }
 
 /* Compare the default with --no-rr, with --no-nee, with the Sobol
@@ -99,24 +84,6 @@ compare_switches(const char *scene, uint64_t seed)
             CHECK(false);
             continue;
         }
-        struct pathcheck_tally blocks = pathcheck_tally_start();
-        struct pathcheck_tally whole = pathcheck_tally_start();
-        CHECK(pathcheck_block_welch(
-            base.images,
-            base.k,
-            other.images,
-            other.k,
-            BLOCK,
-            stat_level(),
-            &blocks));
-        CHECK(pathcheck_block_welch(
-            base.images,
-            base.k,
-            other.images,
-            other.k,
-            SIZE,
-            stat_level(),
-            &whole));
         double mean_base[3];
         double mean_other[3];
         struct image m = {0};
@@ -136,17 +103,10 @@ compare_switches(const char *scene, uint64_t seed)
             other.seconds,
             mean_base[0],
             mean_other[0]);
-        printf(
-            "  %zu block tests: min p %.3g, %zu rejected; image mean: min p %.3g, "
-            "%zu rejected (level %.3g)\n",
-            blocks.tests,
-            blocks.min_p,
-            blocks.rejected,
-            whole.min_p,
-            whole.rejected,
-            stat_level());
+        char what[256];
+        snprintf(what, sizeof what, "  %s, default vs %s", scene, variants[v][0]);
         CHECK_MSG(
-            blocks.rejected == 0 && whole.rejected == 0,
+            pathcheck_sets_agree(what, &base, &other, BLOCK, stat_level()),
             "%s: %s changes the image",
             scene,
             variants[v][0]);

@@ -427,16 +427,6 @@ TEST(mis_weights_sum_to_one_over_both_techniques)
 
 /* --- black-box: the knobs change the noise, not the image ------------------ */
 
-#if PATHCHECK_SANITIZED
-#define SIZE "32"
-#define BLOCKS_PER_SIDE 2
-#define BATCHES 6
-#else
-#define SIZE "64"
-#define BLOCKS_PER_SIDE 4
-#define BATCHES 8
-#endif
-#define BLOCK 16
 #define N_VARIANTS 4
 
 /* A closed box lit by a large one-sided light covering most of the
@@ -462,74 +452,56 @@ TEST(mis_and_solid_angle_keep_the_image)
 {
     const char *scene = test_tmp_path("big_light.scene");
     test_write_file(scene, big_light_scene);
-    static const char *const base_args[] = {"-W", SIZE, "-H", SIZE, "--spp", "16", NULL};
-    static const char *const mis_off[] =
-        {"-W", SIZE, "-H", SIZE, "--spp", "16", "--mis", "off", NULL};
-    static const char *const solid[] =
-        {"-W", SIZE, "-H", SIZE, "--spp", "16", "--light-sampling", "solid-angle", NULL};
-    static const char *const both[] = {
-        "-W",
-        SIZE,
-        "-H",
-        SIZE,
-        "--spp",
-        "16",
-        "--mis",
-        "off",
-        "--light-sampling",
-        "solid-angle",
-        NULL};
-    static const char *const by_size[] =
-        {"-W", SIZE, "-H", SIZE, "--spp", "16", "--light-sampling", "auto", NULL};
+    static const char *const mis_off[] = {"--mis", "off", NULL};
+    static const char *const solid[] = {"--light-sampling", "solid-angle", NULL};
+    static const char *const both[] = {"--mis", "off", "--light-sampling", "solid-angle", NULL};
+    static const char *const by_size[] = {"--light-sampling", "auto", NULL};
     const char *const *variants[N_VARIANTS] = {mis_off, solid, both, by_size};
     const char *names[N_VARIANTS] =
         {"--mis off", "--light-sampling solid-angle", "both", "--light-sampling auto"};
-    double n_tests = N_VARIANTS * 3.0 * (BLOCKS_PER_SIDE * BLOCKS_PER_SIDE + 1);
+    double n_tests = N_VARIANTS
+                     * pathcheck_sets_agree_tests(
+                         PATHCHECK_SETS_SIZE,
+                         PATHCHECK_SETS_SIZE,
+                         PATHCHECK_SETS_BLOCK);
     uint64_t seed = pathcheck_seed(7400);
     struct pathcheck_batches base = {0};
-    if (!pathcheck_render_batches(scene, base_args, BATCHES, seed, &base)) {
+    if (!pathcheck_render_sized(
+            scene,
+            PATHCHECK_SETS_SIZE,
+            16,
+            NULL,
+            PATHCHECK_SETS_K,
+            seed,
+            &base)) {
         CHECK(false);
         return;
     }
-    CHECK(base.nan_pixels == 0);
     for (int v = 0; v < N_VARIANTS; v++) {
         struct pathcheck_batches other = {0};
-        if (!pathcheck_render_batches(scene, variants[v], BATCHES, seed + 100 * (v + 1), &other)) {
+        if (!pathcheck_render_sized(
+                scene,
+                PATHCHECK_SETS_SIZE,
+                16,
+                variants[v],
+                PATHCHECK_SETS_K,
+                seed + 100 * (v + 1),
+                &other)) {
             CHECK(false);
             continue;
         }
-        CHECK(other.nan_pixels == 0);
-        struct pathcheck_tally blocks = pathcheck_tally_start();
-        struct pathcheck_tally whole = pathcheck_tally_start();
-        CHECK(pathcheck_block_welch(
-            base.images,
-            base.k,
-            other.images,
-            other.k,
-            BLOCK,
-            level(n_tests),
-            &blocks));
-        CHECK(pathcheck_block_welch(
-            base.images,
-            base.k,
-            other.images,
-            other.k,
-            atoi(SIZE),
-            level(n_tests),
-            &whole));
-        printf(
-            "large light, default vs %s (%.1f s + %.1f s): %zu block tests, min p %.3g, %zu "
-            "rejected; image mean: min p %.3g, %zu rejected (level %.3g)\n",
+        char what[128];
+        snprintf(
+            what,
+            sizeof what,
+            "large light, default vs %s (%.1f s + %.1f s)",
             names[v],
             base.seconds,
-            other.seconds,
-            blocks.tests,
-            blocks.min_p,
-            blocks.rejected,
-            whole.min_p,
-            whole.rejected,
-            level(n_tests));
-        CHECK_MSG(blocks.rejected == 0 && whole.rejected == 0, "%s changes the image", names[v]);
+            other.seconds);
+        CHECK_MSG(
+            pathcheck_sets_agree(what, &base, &other, PATHCHECK_SETS_BLOCK, level(n_tests)),
+            "%s changes the image",
+            names[v]);
         pathcheck_batches_free(&other);
     }
     pathcheck_batches_free(&base);

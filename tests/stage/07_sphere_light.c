@@ -28,18 +28,9 @@
 #include "stattest.h"
 #include "testlib.h"
 
-#if PATHCHECK_SANITIZED
-#define SIZE "32"
-#define BLOCKS_PER_SIDE 2
-#define BATCHES 6
-#else
-#define SIZE "64"
-#define BLOCKS_PER_SIDE 4
-#define BATCHES 8
-#endif
-#define BLOCK 16
-/* Three comparisons, each of every block and the whole image, 3 channels. */
-#define N_STAT_TESTS (3.0 * 3 * (BLOCKS_PER_SIDE * BLOCKS_PER_SIDE + 1))
+/* Three comparisons of two sets of renders. */
+#define N_STAT_TESTS \
+    (3 * pathcheck_sets_agree_tests(PATHCHECK_SETS_SIZE, PATHCHECK_SETS_SIZE, PATHCHECK_SETS_BLOCK))
 
 /* The camera looks straight down at the floor from height 3 (the floor
  * fills the view); the sphere light (radius 0.5, radiance 20) and the wall
@@ -66,11 +57,13 @@ stage03_binary(void)
     return test_file_exists(path) ? path : NULL;
 }
 
-/* K renders with `binary` (NULL: this stage's) and the extra arguments. */
+/* K renders with `binary` (NULL: this stage's), spp samples per pixel (0:
+ * the binary's own sampling, for stage 03) and the extra arguments. */
 static bool
 render_with(
     const char *binary,
     const char *scene,
+    int spp,
     const char *const args[],
     uint64_t seed,
     struct pathcheck_batches *out)
@@ -79,12 +72,20 @@ render_with(
     if (binary) {
         setenv("RENDER", binary, 1);
     }
-    bool ok = saved && pathcheck_render_batches(scene, args, BATCHES, seed, out);
+    bool ok = saved
+              && pathcheck_render_sized(
+                  scene,
+                  PATHCHECK_SETS_SIZE,
+                  spp,
+                  args,
+                  PATHCHECK_SETS_K,
+                  seed,
+                  out);
     if (saved) {
         setenv("RENDER", saved, 1);
     }
     free(saved);
-    CHECK_MSG(ok && out->nan_pixels == 0, "renders failed or have NaN pixels");
+    CHECK_MSG(ok, "renders failed or have NaN pixels");
     return ok;
 }
 
@@ -92,21 +93,7 @@ static void
 compare(const char *what, const struct pathcheck_batches *a, const struct pathcheck_batches *b)
 {
     double level = stattest_sidak(PATHCHECK_ALPHA, N_STAT_TESTS);
-    struct pathcheck_tally blocks = pathcheck_tally_start();
-    struct pathcheck_tally whole = pathcheck_tally_start();
-    CHECK(pathcheck_block_welch(a->images, a->k, b->images, b->k, BLOCK, level, &blocks));
-    CHECK(pathcheck_block_welch(a->images, a->k, b->images, b->k, atoi(SIZE), level, &whole));
-    printf(
-        "%s: %zu block tests, min p %.3g, %zu rejected; image mean: min p %.3g, %zu rejected "
-        "(level %.3g)\n",
-        what,
-        blocks.tests,
-        blocks.min_p,
-        blocks.rejected,
-        whole.min_p,
-        whole.rejected,
-        level);
-    CHECK_MSG(blocks.rejected == 0 && whole.rejected == 0, "%s differ", what);
+    CHECK_MSG(pathcheck_sets_agree(what, a, b, PATHCHECK_SETS_BLOCK, level), "%s differ", what);
 }
 
 TEST(direct_light_agrees_with_stage_03)
@@ -114,19 +101,16 @@ TEST(direct_light_agrees_with_stage_03)
     const char *scene = test_tmp_path("sphere_lit.scene");
     test_write_file(scene, scene_text);
     uint64_t seed = pathcheck_seed(7300);
-    static const char *const nee[] =
-        {"-W", SIZE, "-H", SIZE, "--spp", "16", "--max-depth", "2", NULL};
-    static const char *const no_nee[] =
-        {"-W", SIZE, "-H", SIZE, "--spp", "16", "--max-depth", "2", "--no-nee", NULL};
-    static const char *const stage03[] = {"-W", SIZE, "-H", SIZE, NULL};
+    static const char *const nee[] = {"--max-depth", "2", NULL};
+    static const char *const no_nee[] = {"--max-depth", "2", "--no-nee", NULL};
     const char *binary03 = stage03_binary();
     struct pathcheck_batches with_nee = {0};
     struct pathcheck_batches without_nee = {0};
     struct pathcheck_batches direct03 = {0};
-    bool ok = render_with(NULL, scene, nee, seed, &with_nee)
-              && render_with(NULL, scene, no_nee, seed + 100, &without_nee);
+    bool ok = render_with(NULL, scene, 16, nee, seed, &with_nee)
+              && render_with(NULL, scene, 16, no_nee, seed + 100, &without_nee);
     if (ok && binary03) {
-        ok = render_with(binary03, scene, stage03, seed + 200, &direct03);
+        ok = render_with(binary03, scene, 0, NULL, seed + 200, &direct03);
     } else if (ok) {
         printf("stage 03 is not built here: 07 with next-event estimation stands in for it\n");
     }
