@@ -166,7 +166,8 @@ share_builds() {
     for sb_d in common tests/support; do
         sb_link=$sb_dir/build/$sb_d
         sb_target=$sb_shared/${sb_d#tests/}
-        if [ -L "$sb_link" ] && [ "$(cd "$sb_link" && pwd -P)" = "$(cd "$sb_target" && pwd -P)" ]; then
+        # (A link into an older, removed shared build dangles: replaced.)
+        if [ -L "$sb_link" ] && [ "$(cd "$sb_link" 2>/dev/null && pwd -P)" = "$(cd "$sb_target" && pwd -P)" ]; then
             continue
         fi
         rm -rf "$sb_link"
