@@ -1,7 +1,7 @@
 /*
  * expect.h - the extremes battery's expectation table and results log,
  * header-only (like check.h), for the programs of the battery:
- * tests/stage/01_extremes_render.c, 04_extremes_glass.c and
+ * tests/stage/01_extremes_render.c, 04-06_extremes_glass.c and
  * 07_extremes_paths.c (black-box renders, tests/extremes/render.h),
  * 01_extremes_geometry.c and 04_extremes_optics.c (white-box).
  *

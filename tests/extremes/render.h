@@ -3,8 +3,9 @@
  * expect.h), for the programs that render scenes with the stage's binary
  * (RENDER) and, when it is given, with the same stage built with REAL=float
  * (RENDER_FLOAT; its cases are skipped otherwise): 01_extremes_render.c
- * (every stage), 04_extremes_glass.c (glass, stage 04 on) and
- * 07_extremes_paths.c (interreflection, stage 07).  Each case is judged
+ * (every stage), 04-06_extremes_glass.c (glass in the Whitted stages) and
+ * 07_extremes_paths.c (interreflection and glass in the path tracer; the
+ * glass cases are in glass.h).  Each case is judged
  * against tests/extremes/expect.tsv (expect.h); each program keeps the
  * cases of the stage whose feature they check, so a lab handout's stubs
  * fail only its own stage's files.

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "stagecheck.h"
 #include "testlib.h"
 
 #define OUTPUT_CAP 16384
@@ -37,6 +38,42 @@ tracecheck_pixel(const char *scene, int x, int y, const char *const args[])
         return NULL;
     }
     return path;
+}
+
+const char *
+tracecheck_ball_scene(const char *name, const char *light)
+{
+    return stagecheck_scene(
+        name,
+        "camera origin 0 4 4 target 0 0 0 up 0 1 0 fov 40\n"
+        "image width 21 height 21\n"
+        "material white diffuse albedo 0.8 0.8 0.8\n"
+        "sphere center 0 1 0 radius 0.3 material white\n"
+        "%s\n"
+        "quad corner -4 0 -4 edge1 0 0 8 edge2 8 0 0 material white\n",
+        light);
+}
+
+const char *
+tracecheck_one_vertex(const char *scene, int x, int y, const char *option, const char *value)
+{
+    const char *args[12] = {"-s", "1"};
+    int n = 2;
+    const char *stage = getenv("STAGE");
+    if (stage && strcmp(stage, "06") >= 0) {
+        args[n++] = "--aa";
+        args[n++] = "grid";
+    }
+    if (stage && strcmp(stage, "07") >= 0) {
+        args[n++] = "--max-depth";
+        args[n++] = "2";
+    }
+    if (option) {
+        args[n++] = option;
+        args[n++] = value;
+    }
+    args[n] = NULL;
+    return scene ? tracecheck_pixel(scene, x, y, args) : NULL;
 }
 
 bool

@@ -16,6 +16,21 @@
  * the binary's output printed, when the run fails. */
 const char *tracecheck_pixel(const char *scene, int x, int y, const char *const args[]);
 
+/* The scene of the shadow traces (tests/stage/02_trace.c, 03_trace.c): a
+ * ball of radius 0.3 floating at height 1 over the origin of an 8 x 8
+ * floor, seen from (0, 4, 4) at 21 x 21 pixels (the middle pixel, 10, 10,
+ * sees the floor at the origin), with the statement `light` on line 5 (the
+ * ball on line 4); written as NAME in the temporary directory.  Its path,
+ * or NULL. */
+const char *tracecheck_ball_scene(const char *name, const char *light);
+
+/* Trace pixel (x, y) of scene with one camera ray through its centre (--aa
+ * grid from stage 06 on) and, from stage 07 on, shadow rays at its first
+ * vertex only (--max-depth 2); option and value (may be NULL) are added.
+ * The trace's path, or NULL (the output printed) when the run fails. */
+const char *
+tracecheck_one_vertex(const char *scene, int x, int y, const char *option, const char *value);
+
 /* The "value" of a JSON trace, as the float the image stores; false when
  * the file or the key is missing. */
 bool tracecheck_value(const char *path, float value[3]);

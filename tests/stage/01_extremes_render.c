@@ -7,7 +7,7 @@
  * describes every case and shows the table of the last run.  The image
  * size, the command lines, the comparisons and the case table are in
  * tests/extremes/render.h, shared with the cases of later stages' features
- * (04_extremes_glass.c, 07_extremes_paths.c).
+ * (04-06_extremes_glass.c, 07_extremes_paths.c).
  *
  * The families (one test each), what every stage must survive:
  *  - scale: the area-light Cornell box scaled by 1e-6 .. 1e6 equals the

@@ -1,25 +1,28 @@
 /*
  * 07_extremes_paths.c - the extremes battery, black-box part for the path
- * tracer (stage 07): albedo 1, where every bounce keeps all the light,
- * judged against tests/extremes/expect.tsv (tests/extremes/render.h has the
- * machinery, shared with 01_extremes_render.c, whose albedo cases check
- * the direct light of every stage).  docs/extremes.md describes the case.
+ * tracer (stage 07), judged against tests/extremes/expect.tsv (the
+ * machinery: tests/extremes/render.h; the glass cases: glass.h).
+ * docs/extremes.md describes every case.
  *
- *  - albedo_1_interreflection: the area-light Cornell box with every
- *    albedo 1 is brighter than twice the box with every albedo 0.5 (the
- *    light's own pixels subtracted from both): light bounces between the
- *    walls, so radiance grows faster than the albedo; and nothing is
- *    infinite or NaN although no path loses energy at a bounce.
+ *  - interreflection (case albedo_1_interreflection): the area-light
+ *    Cornell box with every albedo 1 is brighter than twice the box with
+ *    every albedo 0.5 (the light's own pixels subtracted from both): light
+ *    bounces between the walls, so radiance grows faster than the albedo;
+ *    and nothing is infinite or NaN although no path loses energy at a
+ *    bounce.  (01_extremes_render.c's albedo cases check the direct light
+ *    of every stage.)
+ *  - optics_glass_furnace, thin_glass: the cases of 04-06_extremes_glass.c,
+ *    whose values the path tracer reaches by sampling reflection or
+ *    refraction with the Fresnel probability (glass.h has both stages'
+ *    expected values).
  *
- * Interreflection is stage 07's own (BSDF sampling, lab 07): the case lives
- * in a stage-07 file so that lab 07's handout fails it among its own tests,
- * not in an earlier stage's file.
+ * Interreflection and the path tracer's glass are BSDF sampling, lab 07's
+ * own work: they live in a stage-07 file so that lab 07's handout fails
+ * them among its own tests, not in an earlier stage's file.
  */
-#include <math.h>
-
 #define TAG "paths"
 
-#include "extremes/render.h"
+#include "extremes/glass.h"
 
 /* Albedo 1 against twice albedo 0.5, by the ratio of their means. */
 static void
@@ -56,9 +59,23 @@ TEST(interreflection)
     RUN_CASES(cases);
 }
 
+TEST(optics_glass_furnace)
+{
+    RUN_CASES(glass_furnace_cases);
+}
+
+TEST(thin_glass)
+{
+    RUN_CASES(thin_glass_cases);
+}
+
 TEST(second_precision_given)
 {
     SKIP_WITHOUT_SECOND_PRECISION();
 }
 
-TEST_MAIN(TEST_ENTRY(second_precision_given), TEST_ENTRY(interreflection))
+TEST_MAIN(
+    TEST_ENTRY(second_precision_given),
+    TEST_ENTRY(interreflection),
+    TEST_ENTRY(optics_glass_furnace),
+    TEST_ENTRY(thin_glass))

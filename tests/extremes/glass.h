@@ -1,24 +1,15 @@
 /*
- * 04_extremes_glass.c - the extremes battery, black-box part for glass
- * (stage 04 on): scenes at the edges of the Fresnel equations rendered by
- * the stage's binary and its float build, pixel by pixel against the
- * analytic radiance, judged against tests/extremes/expect.tsv
- * (tests/extremes/render.h has the machinery, shared with
- * 01_extremes_render.c; 04_extremes_optics.c checks optics.h itself).
- * docs/extremes.md describes every case.
- *
- *  - optics_glass_furnace: a glass sphere of index 1, 1.0001, 2.42 and 10
- *    in a white furnace, pixel by pixel against the Fresnel series;
- *  - thin_glass: a glass slab 1e-5 thick before an area light, pixel by
- *    pixel against the Fresnel transmittance.
- *
- * Before stage 04 glass is shaded as white diffuse (common/feature_table.c):
- * nothing here applies, and the tests live in a stage-04 file so that lab
- * 04's handout fails them in its own tests, not in an earlier stage's.
+ * glass.h - the glass cases of the extremes battery, header-only (like
+ * render.h, which it needs): a glass sphere in a white furnace and a thin
+ * glass slab, each pixel by pixel against the analytic radiance.  Whitted's
+ * recursion (stages 04-06) and the path tracer (07) give different values,
+ * and are different labs' work: 04-06_extremes_glass.c runs the cases in
+ * 04-06, 07_extremes_paths.c in 07, with the same tables and names.
  */
-#include <math.h>
+#ifndef EXTREMES_GLASS_H
+#define EXTREMES_GLASS_H
 
-#define TAG "glass"
+#include <math.h>
 
 #include "extremes/render.h"
 
@@ -28,7 +19,7 @@
  * cosine of incidence and the ratio n = n_t / n_i, written from Snell's
  * law and the amplitude coefficients (Born and Wolf 1.5.2), independently
  * of the stage's optics.c; 1 under total internal reflection. */
-static double
+static inline double
 fresnel(double cos_i, double n)
 {
     double sin_t2 = (1 - cos_i * cos_i) / (n * n);
@@ -48,7 +39,7 @@ fresnel(double cos_i, double n)
  * for stage 07, `spp` samples on the pixel-centre grid without Russian
  * roulette, so that a path through glass keeps the weight 1 until it leaves
  * (bsdf.c picks reflection with probability F). */
-static struct args
+static inline struct args
 glass_args(const char *spp)
 {
     if (stage() < 7) {
@@ -69,7 +60,7 @@ glass_args(const char *spp)
  * a sphere meets it again at the refracted angle, where the reflectance is
  * the same F); 07: exactly 1 (nothing absorbs, every path leaves).  Stages
  * 01-03 shade glass as white diffuse: the sphere is black there. */
-static void
+static inline void
 run_furnace(const struct render_case *c, const struct precision *p, struct outcome *o)
 {
     double eye[3] = {0.3, 0.5, 4};
@@ -134,17 +125,6 @@ run_furnace(const struct render_case *c, const struct precision *p, struct outco
     image_free(&img);
 }
 
-TEST(optics_glass_furnace)
-{
-    static const struct render_case cases[] = {
-        {"ior_1", run_furnace, 1, 0},
-        {"ior_1.0001", run_furnace, 1.0001, 0},
-        {"ior_2.42", run_furnace, 2.42, 0},
-        {"ior_10", run_furnace, 10, 0},
-    };
-    RUN_CASES(cases);
-}
-
 /* ---- a thin glass slab ---------------------------------------------------- */
 
 /* A slab of glass (index 1.5) of thickness w (the case's parameter, the
@@ -157,7 +137,7 @@ TEST(optics_glass_furnace)
  * incidence (the same at both faces); 07 on average (1 - F) / (1 + F), the
  * whole series.  Beside the slab: 1.  A refracted ray spawned beyond the
  * back face (an offset larger than w) misses it and gives 1 - F instead. */
-static void
+static inline void
 run_thin_glass(const struct render_case *c, const struct precision *p, struct outcome *o)
 {
     (void)p;
@@ -283,20 +263,16 @@ run_thin_glass(const struct render_case *c, const struct precision *p, struct ou
     image_free(&img);
 }
 
-TEST(thin_glass)
-{
-    static const struct render_case cases[] = {
-        {"thin_glass_1e-5", run_thin_glass, 1e-5, 0},
-    };
-    RUN_CASES(cases);
-}
+/* The cases, by the names expect.tsv gives them. */
+static const struct render_case glass_furnace_cases[] = {
+    {"ior_1", run_furnace, 1, 0},
+    {"ior_1.0001", run_furnace, 1.0001, 0},
+    {"ior_2.42", run_furnace, 2.42, 0},
+    {"ior_10", run_furnace, 10, 0},
+};
 
-TEST(second_precision_given)
-{
-    SKIP_WITHOUT_SECOND_PRECISION();
-}
+static const struct render_case thin_glass_cases[] = {
+    {"thin_glass_1e-5", run_thin_glass, 1e-5, 0},
+};
 
-TEST_MAIN(
-    TEST_ENTRY(second_precision_given),
-    TEST_ENTRY(optics_glass_furnace),
-    TEST_ENTRY(thin_glass))
+#endif /* EXTREMES_GLASS_H */
