@@ -19,11 +19,9 @@ models:
 	@echo "models: not generated (no glTF support: apt-get install libtinygltf-dev)"
 endif
 
-# The tool is built by tests/Makefile (with the common core it needs),
-# after the top-level `tools` target: the two would otherwise run at once
-# under make -j and write the same test-support archive.
+# The tool is built by tests/Makefile (with the common core it needs).
 $(ROOT)/build/models/happy_res3_subdiv16.glb: $(ROOT)/scenes/models/happy_res3.glb \
-		$(ROOT)/tests/tools/subdivide_glb.c $(ROOT)/tests/lib/meshgen.c | tools
+		$(ROOT)/tests/tools/subdivide_glb.c $(ROOT)/tests/lib/meshgen.c
 	@$(MAKE) --no-print-directory -C $(ROOT)/tests $(BUILDROOT)tools/subdivide_glb
 	@mkdir -p $(@D)
 	@tmp=$@.tmp-$$$$; \
