@@ -34,7 +34,11 @@ common:
 
 # The generated models (build/models/), made after the common core.
 include scenes/models/models.mk
-$(MODELS): | common
+# The model's rule builds its tool through tests/Makefile, as `tools` does:
+# after it, so that under make -j the two never write the test-support
+# archive (build/tests/libtestsupport.a) at once.  Here and not in models.mk:
+# the lab handouts include models.mk and have no `tools` target.
+$(MODELS): | common tools
 
 # Each stage after the common core, so parallel stage builds never race on it.
 $(STAGES): common
