@@ -20,12 +20,15 @@ cell_parity(real x, real size)
 /* A solid 3D checkerboard of cubes of edge checker_size, with a cube corner
  * at the origin.  A surface lying exactly on a cube face (the floor at
  * y = 0) would flicker between two cells with the rounding of p, so p is
- * first moved towards -infinity on every axis by more than its error bound:
- * such a surface always takes the cell below, whichever way it faces. */
+ * first moved towards -infinity by more than its error bound, along the
+ * axes the surface faces (the components of |ng|): such a surface always
+ * takes the cell below, whichever way it faces.  Not along the others:
+ * that would slide the pattern over the surface by the bound, a cell and
+ * more in single precision 1e6 from the origin (2 x 64 ulps = 15 units). */
 static vec3
 checker_albedo(const struct material *m, const struct hit *h)
 {
-    vec3 q = vec3_sub(h->p, vec3_splat(2 * h->error));
+    vec3 q = vec3_sub(h->p, vec3_scale(vec3_abs(h->ng), 2 * h->error));
     int parity = cell_parity(q.x, m->checker_size) ^ cell_parity(q.y, m->checker_size)
                  ^ cell_parity(q.z, m->checker_size);
     return parity ? m->albedo2 : m->albedo;
