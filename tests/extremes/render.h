@@ -609,6 +609,42 @@ worst_pixel_error(const struct image *img, const double *expected, double bad, i
     return worst;
 }
 
+/* Render `scene` with `a` into *img and judge it against expected[] (as
+ * worst_pixel_error, `bad` the tolerance): o->figure the worst relative
+ * error, passed when no pixel is off by more than `bad` and none is NaN,
+ * the note naming the `counted` pixels (e.g. "412 sphere pixels"); *nan
+ * the image's NaN pixels.  False when the render failed (o->figure
+ * infinite, nothing to free); otherwise the caller frees *img. */
+static inline bool
+render_judged(
+    const char *scene,
+    const struct args *a,
+    const double *expected,
+    double bad,
+    const char *counted,
+    struct outcome *o,
+    struct image *img,
+    double *nan)
+{
+    if (!render(scene, a, img, nan)) {
+        o->figure = INFINITY;
+        return false;
+    }
+    int n_bad;
+    o->figure = worst_pixel_error(img, expected, bad, &n_bad);
+    o->passed = n_bad == 0 && *nan == 0;
+    snprintf(
+        o->note,
+        sizeof o->note,
+        "worst relative error %.3g (%s); pixels off by > %g: %d; nan_pixels %g",
+        o->figure,
+        counted,
+        bad,
+        n_bad,
+        *nan);
+    return true;
+}
+
 /* ---- the albedo extremes --------------------------------------------------- */
 
 /* The box with every albedo set to `albedo`, one ray per pixel centre. */

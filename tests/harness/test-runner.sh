@@ -93,13 +93,19 @@ TEST(arithmetic) { CHECK(2 * 3 == 6); }
 TEST_MAIN(TEST_ENTRY(render_answers), TEST_ENTRY(arithmetic))
 EOF
 
-# mk ARGS... - make in the copy, with a clean command line (no -j, variant
-# or STAGE of the make that runs these tests); output in $T/out, status in st.
+# What env removes for a make in the copy: the -j, variant and STAGE of
+# the make that runs these tests (make exports its command-line variables,
+# REAL=float among them, to the recipes' environment).
+CLEAN_ENV="-u MAKEFLAGS -u MAKELEVEL -u MFLAGS -u STAGE -u OUT -u LAB -u REAL -u SANITIZE
+    -u WERROR -u CFLAGS -u CPPFLAGS -u LDFLAGS -u LDLIBS"
+
+# mk ARGS... - make in the copy, with a clean command line; output in
+# $T/out, status in st.
 mk() {
     st=0
-    (cd "$C" && env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS -u STAGE -u OUT -u LAB -u REAL \
-        -u SANITIZE -u WERROR -u CFLAGS -u CPPFLAGS -u LDFLAGS -u LDLIBS \
-        make --no-print-directory TINYGLTF=0 OPENEXR=0 "$@") >"$T/out" 2>"$T/err" || st=$?
+    # shellcheck disable=SC2086 # CLEAN_ENV is a list of options
+    (cd "$C" && env $CLEAN_ENV make --no-print-directory TINYGLTF=0 OPENEXR=0 "$@") \
+        >"$T/out" 2>"$T/err" || st=$?
 }
 
 # said - everything the last make printed; last - its last line of output.
@@ -283,12 +289,12 @@ EOF
 mkdir -p "$T/tmp"
 log=$C/build/tests/logs/02_fake-02_hang.log
 rm -f "$log"
-(cd "$C" && exec env -u MAKEFLAGS -u MAKELEVEL -u MFLAGS -u STAGE TMPDIR="$T/tmp" \
+# shellcheck disable=SC2086 # CLEAN_ENV is a list of options
+(cd "$C" && exec env $CLEAN_ENV TMPDIR="$T/tmp" \
     setsid make --no-print-directory TINYGLTF=0 OPENEXR=0 test STAGE=02) >"$T/out" 2>"$T/err" &
 job=$!
 # Up to 300 s for the copy to build stage 02 (double and float) and its
-# tests: 60 s ran out at a load average of 9 (the check then failed with
-# nothing wrong); the loop ends as soon as the test has started.
+# tests on a loaded machine; the loop ends as soon as the test has started.
 i=0
 while [ "$i" -lt 3000 ] && ! grep -qs started "$log"; do
     sleep 0.1
