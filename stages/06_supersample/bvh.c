@@ -133,6 +133,126 @@ prim_bounds(const struct world *w, int prim)
     return parallelogram_bounds(light->corner, light->edge1, light->edge2);
 }
 
+/* --- primitives set aside ------------------------------------------------ */
+
+/*
+ * A median split places a primitive by its centroid alone, so a primitive
+ * that many rays meet can end up in a leaf with neighbours far from it: a
+ * wall of a room beside a few triangles of the statue in it, a light on
+ * the ceiling beside the statue's top.  That leaf's box and every
+ * ancestor's then span the gap, and a ray crossing it tests two boxes per
+ * level all the way down the chain.  A few such primitives are kept out of
+ * the tree instead, in prims[0, n_aside), and every ray tests them first.
+ *
+ * Which: those that a ray meets with a chance of at least
+ * 1/BVH_ASIDE_DIVISOR (in the tree, such a primitive costs a ray that
+ * chance times about two box tests per level, some 2 x 17 for 10^5
+ * primitives; set aside, it costs every ray one primitive test).  The
+ * chance is estimated two ways, the larger counting:
+ * - for rays from everywhere, the ratio of the primitive's box's surface
+ *   area to the scene box's (for convex bodies, the argument of the surface
+ *   area heuristic: MacDonald and Booth 1990): the large primitives;
+ * - for shadow rays, 1 / (number of lights) for a light: next-event
+ *   estimation aims a shadow ray at one light from every point it shades.
+ * At most BVH_MAX_ASIDE primitives are set aside, the most likely ones
+ * (ties to the lowest number), so that a ray tests at most that many
+ * outside the tree, whatever the scene.  docs/stages/05_bvh.md, "Primitives
+ * of very different sizes", has the measurements.
+ */
+
+/* Surface area of a box (0 for an empty one). */
+static real
+box_area(struct box b)
+{
+    vec3 e = vec3_max(vec3_sub(b.hi, b.lo), vec3_splat(0));
+    return 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
+}
+
+/* The chance that a ray meets primitive `prim`, estimated as above, for a
+ * scene box of surface area scene_area > 0. */
+static real
+chance_of_meeting(const struct world *w, int prim, real scene_area)
+{
+    const struct scene *s = w->scene;
+    int first_light = s->n_spheres + s->n_quads + s->n_triangles;
+    real chance = box_area(prim_bounds(w, prim)) / scene_area;
+    if (prim >= first_light) {
+        real aimed_at = (real)1 / (s->n_area_lights + s->n_sphere_lights);
+        chance = aimed_at > chance ? aimed_at : chance;
+    }
+    return chance;
+}
+
+struct aside {
+    real chance;
+    int prim;
+};
+
+/* Add `a` to list[0, n), kept in decreasing chance (an equal chance after
+ * the earlier primitive) and to at most BVH_MAX_ASIDE; returns the new n. */
+static int
+keep_likeliest(struct aside *list, int n, struct aside a)
+{
+    int at = n;
+    while (at > 0 && list[at - 1].chance < a.chance) {
+        at--;
+    }
+    if (at >= BVH_MAX_ASIDE) {
+        return n;
+    }
+    n = n < BVH_MAX_ASIDE ? n + 1 : n;
+    for (int i = n - 1; i > at; i--) {
+        list[i] = list[i - 1];
+    }
+    list[at] = a;
+    return n;
+}
+
+/* Sort list[0, n) by primitive number (n is at most BVH_MAX_ASIDE). */
+static void
+sort_by_prim(struct aside *list, int n)
+{
+    for (int i = 1; i < n; i++) {
+        struct aside a = list[i];
+        int j = i;
+        for (; j > 0 && list[j - 1].prim > a.prim; j--) {
+            list[j] = list[j - 1];
+        }
+        list[j] = a;
+    }
+}
+
+/*
+ * Choose the primitives to set aside and move them to refs[0, n_aside), in
+ * numbering order; return n_aside.  refs must be in numbering order
+ * (refs[p].prim == p, as make_refs leaves them): then the k-th chosen,
+ * primitive p_k >= k, is swapped with refs[k], and no later swap touches
+ * it.  A scene box of zero or infinite area sets nothing aside.
+ */
+static int
+set_aside(const struct world *w, struct build_ref *refs, struct box all)
+{
+    struct aside list[BVH_MAX_ASIDE + 1];
+    int n = 0;
+    real scene_area = box_area(all);
+    if (!(scene_area > 0 && scene_area <= REAL_MAX)) {
+        return 0;
+    }
+    for (int prim = 0; prim < w->n_prims && BVH_MAX_ASIDE > 0; prim++) {
+        real chance = chance_of_meeting(w, prim, scene_area);
+        if (chance >= (real)1 / BVH_ASIDE_DIVISOR) {
+            n = keep_likeliest(list, n, (struct aside){chance, prim});
+        }
+    }
+    sort_by_prim(list, n);
+    for (int k = 0; k < n; k++) {
+        struct build_ref chosen = refs[list[k].prim];
+        refs[list[k].prim] = refs[k];
+        refs[k] = chosen;
+    }
+    return n;
+}
+
 /* --- the split axis ------------------------------------------------------- */
 
 /* The axis along which the centroids of refs[0, n) spread most (x on ties,
@@ -283,7 +403,8 @@ alloc_array(size_t count, size_t size)
 }
 
 /* A median split of n >= 1 primitives makes at most 2n - 1 nodes (fewer
- * with leaves of more than one: summarize gives the rest back). */
+ * with leaves of more than one, or primitives set aside: summarize gives
+ * the rest back). */
 static bool
 allocate(struct bvh *bvh, int n, struct build_ref **refs)
 {
@@ -305,14 +426,15 @@ static void
 summarize(struct bvh *bvh)
 {
     size_t count = (size_t)bvh->n_nodes;
-    struct bvh_node *nodes = realloc(bvh->nodes, count * sizeof *nodes);
+    struct bvh_node *nodes = count > 0 ? realloc(bvh->nodes, count * sizeof *nodes) : NULL;
     bvh->nodes = nodes ? nodes : bvh->nodes;
     for (int id = 0; id < bvh->n_nodes; id++) {
         int n = bvh->nodes[id].count;
         bvh->n_leaves += n > 0;
         bvh->max_leaf = n > bvh->max_leaf ? n : bvh->max_leaf;
     }
-    bvh->mean_leaf = (double)bvh->n_prims / bvh->n_leaves;
+    int in_tree = bvh->n_prims - bvh->n_aside;
+    bvh->mean_leaf = bvh->n_leaves > 0 ? (double)in_tree / bvh->n_leaves : 0;
     bvh->bytes = count * sizeof *bvh->nodes + (size_t)bvh->n_prims * sizeof *bvh->prims;
     if (bvh->leaf_vertices) {
         bvh->bytes += 3 * (size_t)bvh->n_prims * sizeof *bvh->leaf_vertices;
@@ -337,8 +459,12 @@ bvh_build(struct bvh *bvh, const struct world *w, struct diag *err)
         return false;
     }
     bvh->n_prims = w->n_prims;
-    real margin = margin_for(make_refs(w, refs));
-    build_subtree(bvh, refs, 0, w->n_prims, 1);
+    struct box all = make_refs(w, refs);
+    real margin = margin_for(all);
+    bvh->n_aside = set_aside(w, refs, all);
+    if (bvh->n_aside < bvh->n_prims) {
+        build_subtree(bvh, refs, bvh->n_aside, bvh->n_prims, 1);
+    }
     assert(bvh->depth <= BVH_MAX_DEPTH);
     set_leaf_order(bvh, w, refs);
     free(refs);
@@ -547,16 +673,18 @@ struct closest {
     real t_prim;
 };
 
+/* The primitives in slots [first, end): a leaf's, or those set aside. */
 static void
-closest_in_leaf(
+closest_in_slots(
     const struct bvh *bvh,
     const struct world *w,
-    const struct bvh_node *leaf,
+    uint32_t first,
+    uint32_t end,
     ray r,
     struct closest *c)
 {
     struct hit h;
-    for (uint32_t slot = leaf->index; slot < leaf->index + leaf->count; slot++) {
+    for (uint32_t slot = first; slot < end; slot++) {
         if (!intersect_slot(bvh, w, slot, r, c->t_prim, &h)) {
             continue;
         }
@@ -584,7 +712,9 @@ bvh_intersect(
     struct closest c = {.out = out, .t_box = t_max, .t_prim = t_max};
     struct traversal tr;
     traversal_begin(&tr, r);
-    uint32_t id = start(bvh, &tr, t_max);
+    closest_in_slots(bvh, w, 0, (uint32_t)bvh->n_aside, r, &c);
+    tr.tests += (uint64_t)bvh->n_aside;
+    uint32_t id = start(bvh, &tr, c.t_box);
     while (id != NO_NODE) {
         const struct bvh_node *node = &bvh->nodes[id];
         if (node->count == 0) {
@@ -592,7 +722,7 @@ bvh_intersect(
             id = id != NO_NODE ? id : pop(&tr, c.t_box);
             continue;
         }
-        closest_in_leaf(bvh, w, node, r, &c);
+        closest_in_slots(bvh, w, node->index, node->index + node->count, r, &c);
         tr.tests += node->count;
         id = pop(&tr, c.t_box);
     }
@@ -601,17 +731,19 @@ bvh_intersect(
     return c.found;
 }
 
+/* Whether a primitive in slots [first, end) is hit before t_max. */
 static bool
-any_in_leaf(
+any_in_slots(
     const struct bvh *bvh,
     const struct world *w,
-    const struct bvh_node *leaf,
+    uint32_t first,
+    uint32_t end,
     ray r,
     real t_max,
     struct traversal *tr)
 {
     struct hit h;
-    for (uint32_t slot = leaf->index; slot < leaf->index + leaf->count; slot++) {
+    for (uint32_t slot = first; slot < end; slot++) {
         tr->tests++;
         if (intersect_slot(bvh, w, slot, r, t_max, &h)) {
             return true;
@@ -625,8 +757,8 @@ bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, st
 {
     struct traversal tr;
     traversal_begin(&tr, r);
-    bool hit = false;
-    uint32_t id = start(bvh, &tr, t_max);
+    bool hit = any_in_slots(bvh, w, 0, (uint32_t)bvh->n_aside, r, t_max, &tr);
+    uint32_t id = hit ? NO_NODE : start(bvh, &tr, t_max);
     while (id != NO_NODE && !hit) {
         const struct bvh_node *node = &bvh->nodes[id];
         if (node->count == 0) {
@@ -634,7 +766,7 @@ bvh_occluded(const struct bvh *bvh, const struct world *w, ray r, real t_max, st
             id = id != NO_NODE ? id : pop(&tr, t_max);
             continue;
         }
-        hit = any_in_leaf(bvh, w, node, r, t_max, &tr);
+        hit = any_in_slots(bvh, w, node->index, node->index + node->count, r, t_max, &tr);
         id = pop(&tr, t_max);
     }
     st->node_visits += tr.visits;

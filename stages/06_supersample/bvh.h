@@ -11,10 +11,20 @@
  * primitive, as Moller-Trumbore can on an exactly degenerate triangle whose
  * determinant comes out as rounding noise, finds it in no box.)
  *
- * Memory layout: the nodes are one array in depth-first order.  An interior
- * node's first child is the next node; its second child is nodes[index].  A
- * leaf holds prims[index .. index + count), primitive numbers in the world's
- * numbering (spheres, quads, triangles, then area lights).
+ * A few primitives that most rays meet (the walls of a room around a
+ * statue, a ground quad under a mesh, the light that shadow rays aim at)
+ * are set aside: kept out of the tree and tested by every ray before it
+ * (bvh.c, "primitives set aside").  In a median-split tree such a primitive
+ * would share a leaf with neighbours far from it, widening that leaf's box
+ * and every ancestor's over the gap, and most rays would enter that whole
+ * chain of nodes.
+ *
+ * Memory layout: prims[0, n_aside) are the primitives set aside, in
+ * numbering order; the tree's leaves hold the rest.  The nodes are one
+ * array in depth-first order.  An interior node's first child is the next
+ * node; its second child is nodes[index].  A leaf holds prims[index ..
+ * index + count), primitive numbers in the world's numbering (spheres,
+ * quads, triangles, then area lights).
  */
 #ifndef BVH_H
 #define BVH_H
@@ -33,6 +43,20 @@
  * traces as fast as 2 with twice the nodes; 4 is 2-10% slower, 8 15-20%. */
 #ifndef BVH_MAX_LEAF
 #define BVH_MAX_LEAF 2
+#endif
+
+/* Primitives are set aside (kept out of the tree, tested by every ray)
+ * when a ray meets them with an estimated chance of at least
+ * 1/BVH_ASIDE_DIVISOR: large ones, by their box's surface area against the
+ * scene's, and lights, which shadow rays aim at.  At most BVH_MAX_ASIDE
+ * (the likeliest), so that a ray tests no more than that outside the tree.
+ * bvh.c, "primitives set aside", says why; -DBVH_MAX_ASIDE=0 builds the
+ * plain tree. */
+#ifndef BVH_ASIDE_DIVISOR
+#define BVH_ASIDE_DIVISOR 16
+#endif
+#ifndef BVH_MAX_ASIDE
+#define BVH_MAX_ASIDE 8
 #endif
 
 /* Deepest tree the traversal stack holds.  A median split halves the count
@@ -55,11 +79,12 @@ static_assert(sizeof(struct bvh_node) == 32, "two nodes per 64-byte cache line")
 struct bvh {
     struct bvh_node *nodes; /* nodes[0] is the root */
     int n_nodes;
-    int *prims; /* primitive numbers in leaf order */
+    int *prims; /* primitive numbers: those set aside, then the rest in leaf order */
     int n_prims;
-    int depth; /* levels, the root being level 1 */
+    int n_aside; /* prims[0, n_aside): set aside, tested by every ray; 0 to BVH_MAX_ASIDE */
+    int depth; /* levels, the root being level 1; 0 without a tree */
     int max_leaf; /* most primitives in one leaf */
-    double mean_leaf; /* mean primitives per leaf */
+    double mean_leaf; /* mean primitives per leaf (0 without a tree) */
     int n_leaves;
     size_t bytes; /* memory held by the structure */
     /* Triangles' corners copied in leaf order (3 per slot of prims; unused
@@ -69,8 +94,10 @@ struct bvh {
     int tri_begin, tri_end; /* the triangles' primitive numbers */
 };
 
-/* Build the hierarchy over w's primitives (zero primitives is allowed).
- * Fills bvh; false with err set when memory runs out (bvh is left empty). */
+/* Build the hierarchy over w's primitives (zero primitives is allowed), the
+ * large ones set aside.  Fills bvh (without nodes when there are no
+ * primitives or all are set aside); false with err set when memory runs
+ * out (bvh is left empty). */
 bool bvh_build(struct bvh *bvh, const struct world *w, struct diag *err);
 
 /* Free; accepts a zero-initialised or freed bvh. */

@@ -188,6 +188,7 @@ build_acceleration(
     const struct bvh *bvh = &renderer->world.bvh;
     rep->seconds_build = clock_seconds() - start;
     report_set(rep, "bvh_nodes", bvh->n_nodes, true);
+    report_set(rep, "bvh_aside", bvh->n_aside, true);
     report_set(rep, "bvh_depth", bvh->depth, true);
     report_set(rep, "bvh_max_leaf", bvh->max_leaf, true);
     report_set(rep, "bvh_mean_leaf", bvh->mean_leaf, false);

@@ -1,7 +1,8 @@
 /*
  * 05_bvh.c - the bounding volume hierarchy: its structure (TESTING.md T15),
  * its answers against testing every primitive (T16), any-hit against
- * closest-hit, and its cost growing as log n (T18).
+ * closest-hit, its cost growing as log n (T18) and not with the size of a
+ * few large primitives (the primitives it sets aside).
  *
  * "Brute force" is the loop of world_intersect without a BVH: every
  * primitive in numbering order, a hit kept when t < the best so far, so the
@@ -157,6 +158,20 @@ prim_box(const struct world *w, int prim, vec3 *lo, vec3 *hi)
     }
 }
 
+/* The box around every primitive. */
+static void
+scene_box(const struct world *w, vec3 *lo, vec3 *hi)
+{
+    prim_box(w, 0, lo, hi);
+    for (int prim = 1; prim < w->n_prims; prim++) {
+        vec3 a;
+        vec3 b;
+        prim_box(w, prim, &a, &b);
+        *lo = vec3_min(*lo, a);
+        *hi = vec3_max(*hi, b);
+    }
+}
+
 static bool
 box_holds(const struct bvh_node *outer, vec3 lo, vec3 hi)
 {
@@ -179,7 +194,7 @@ node_holds(const struct bvh_node *outer, const struct bvh_node *inner)
 /* What a walk of the tree found wrong, counted by kind. */
 struct walk {
     int next_id; /* nodes are numbered in depth-first order */
-    int next_slot; /* leaves cover prims[] in order, without gaps */
+    int next_slot; /* leaves cover prims[n_aside, n_prims) in order, without gaps */
     int depth, leaves, max_leaf;
     int bad_order, bad_leaf, bad_box, bad_child, bad_prim;
     int *seen; /* per primitive: how many leaves hold it */
@@ -249,30 +264,53 @@ walk_tree(const struct bvh *bvh, const struct world *w, struct walk *k)
     }
 }
 
-/* T15: every primitive in exactly one leaf; leaves of 1..BVH_MAX_LEAF
- * primitives covering prims[] in order; depth-first numbering; every box
- * holding its children and its primitives; the summary fields true. */
+/* The primitives set aside: at most BVH_MAX_ASIDE, valid numbers in
+ * increasing order; counted in k->seen. */
+static void
+check_aside(const struct bvh *bvh, const struct world *w, struct walk *k)
+{
+    CHECK_MSG(
+        bvh->n_aside >= 0 && bvh->n_aside <= BVH_MAX_ASIDE && bvh->n_aside <= w->n_prims,
+        "%d primitives set aside",
+        bvh->n_aside);
+    for (int slot = 0; slot < bvh->n_aside && slot < w->n_prims; slot++) {
+        int prim = bvh->prims[slot];
+        bool valid = prim >= 0 && prim < w->n_prims && (slot == 0 || prim > bvh->prims[slot - 1]);
+        k->bad_prim += !valid;
+        k->seen[valid ? prim : 0] += valid;
+    }
+    k->next_slot = bvh->n_aside;
+}
+
+/* T15: every primitive in exactly one leaf or set aside; leaves of
+ * 1..BVH_MAX_LEAF primitives covering the rest of prims[] in order;
+ * depth-first numbering; every box holding its children and its
+ * primitives; the summary fields true. */
 static void
 check_structure(const struct bvh *bvh, const struct world *w)
 {
     CHECK(bvh->n_prims == w->n_prims);
     if (w->n_prims == 0) {
-        CHECK(bvh->n_nodes == 0);
+        CHECK(bvh->n_nodes == 0 && bvh->n_aside == 0);
         return;
     }
-    if (bvh->n_nodes < 1 || !bvh->nodes) {
-        CHECK_MSG(false, "no nodes for %d primitives: bvh_build built no tree", w->n_prims);
+    int in_tree = w->n_prims - bvh->n_aside;
+    if (in_tree > 0 && (bvh->n_nodes < 1 || !bvh->nodes)) {
+        CHECK_MSG(false, "no nodes for %d primitives: bvh_build built no tree", in_tree);
         return;
     }
     struct walk k = {.seen = calloc((size_t)w->n_prims, sizeof(int))};
-    CHECK(k.seen != NULL && bvh->n_nodes <= 2 * w->n_prims - 1);
-    walk_tree(bvh, w, &k);
+    CHECK(k.seen != NULL && bvh->n_nodes <= 2 * in_tree - 1 + (in_tree == 0));
+    check_aside(bvh, w, &k);
+    if (in_tree > 0) {
+        walk_tree(bvh, w, &k);
+    }
     int not_once = 0;
     for (int prim = 0; prim < w->n_prims; prim++) {
         not_once += k.seen[prim] != 1;
     }
     free(k.seen);
-    CHECK_MSG(not_once == 0, "%d primitives not in exactly one leaf", not_once);
+    CHECK_MSG(not_once == 0, "%d primitives not in exactly one leaf or set aside", not_once);
     CHECK_MSG(
         k.bad_order == 0 && k.bad_child == 0,
         "%d nodes out of depth-first order, %d bad children",
@@ -287,7 +325,7 @@ check_structure(const struct bvh *bvh, const struct world *w)
     CHECK(k.next_id == bvh->n_nodes && k.next_slot == w->n_prims);
     CHECK(k.depth == bvh->depth && k.depth <= BVH_MAX_DEPTH);
     CHECK(k.leaves == bvh->n_leaves && k.max_leaf == bvh->max_leaf);
-    CHECK_NEAR(bvh->mean_leaf, (double)w->n_prims / k.leaves, 1e-12);
+    CHECK_NEAR(bvh->mean_leaf, in_tree > 0 ? (double)in_tree / k.leaves : 0, 1e-12);
 }
 
 /* Levels a median split of n primitives makes: halving until a leaf. */
@@ -304,7 +342,8 @@ build_checked(const struct world *w, struct bvh *bvh)
     struct diag err;
     CHECK(bvh_build(bvh, w, &err));
     check_structure(bvh, w);
-    CHECK(w->n_prims == 0 || bvh->depth == median_split_depth(w->n_prims));
+    int in_tree = w->n_prims - bvh->n_aside;
+    CHECK(in_tree == 0 ? bvh->depth == 0 : bvh->depth == median_split_depth(in_tree));
 }
 
 TEST(structure_of_random_soups)
@@ -321,7 +360,9 @@ TEST(structure_of_random_soups)
     }
 }
 
-TEST(single_primitive_is_one_leaf)
+/* One primitive is as large as the scene: it is set aside, and there is no
+ * tree. */
+TEST(single_primitive_is_set_aside)
 {
     for (int kind = 0; kind < 3; kind++) {
         struct scene s = {0};
@@ -335,7 +376,7 @@ TEST(single_primitive_is_one_leaf)
         struct world w = world_make(&s);
         struct bvh bvh;
         build_checked(&w, &bvh);
-        CHECK(bvh.n_nodes == 1 && bvh.nodes[0].count == 1 && bvh.prims[0] == 0);
+        CHECK(bvh.n_nodes == 0 && bvh.n_aside == 1 && bvh.prims[0] == 0);
         bvh_free(&bvh);
         scene_free(&s);
     }
@@ -596,12 +637,9 @@ compare_random_rays(
     struct agreement *a)
 {
     struct rng g = rng_make(seed, 5);
-    if (bvh->n_nodes < 1 || !bvh->nodes) {
-        a->mismatches++; /* no tree to aim at: check_structure says why */
-        return;
-    }
-    vec3 lo = vec3_make(bvh->nodes[0].lo[0], bvh->nodes[0].lo[1], bvh->nodes[0].lo[2]);
-    vec3 hi = vec3_make(bvh->nodes[0].hi[0], bvh->nodes[0].hi[1], bvh->nodes[0].hi[2]);
+    vec3 lo;
+    vec3 hi;
+    scene_box(w, &lo, &hi);
     vec3 size = vec3_sub(hi, lo);
     for (int i = 0; i < n; i++) {
         vec3 f = vec3_make(rng_uniform(&g), rng_uniform(&g), rng_uniform(&g));
@@ -952,9 +990,132 @@ TEST(cost_grows_as_log_n)
     CHECK(visits[1] / visits[0] < 4);
 }
 
+/* --- primitives set aside ------------------------------------------------ */
+
+/* A floor quad 100 x 100 one unit under the unit sphere of cost_per_ray,
+ * and a small light two units above it: what a median split alone would
+ * put in leaves beside the sphere's triangles. */
+static void
+add_floor_and_light(struct scene *s)
+{
+    add_quad(s, vec3_make(-50, -1, -50), vec3_make(0, 0, 100), vec3_make(100, 0, 0));
+    add_area_light(s, vec3_make(-0.25, 3, -0.25), vec3_make(0.5, 0, 0), vec3_make(0, 0, 0.5));
+}
+
+/* The sphere of 20,000 triangles costs a ray about as many box tests on
+ * the floor, under the light, as alone: the two are set aside, and each
+ * costs every ray one primitive test.  (Left in the tree, they make every
+ * ray descend their leaves' chains of scene-sized boxes.) */
+TEST(large_primitives_add_no_box_tests)
+{
+    const double center[3] = {0, 0, 0};
+    struct scene s = {0};
+    add_mesh_once(&s, meshgen_sphere(101, 100, 1, center, 0, 1));
+    double visits[2];
+    double tests[2];
+    int hits[2];
+    cost_per_ray(&s, &visits[0], &tests[0], &hits[0]);
+    add_floor_and_light(&s);
+    cost_per_ray(&s, &visits[1], &tests[1], &hits[1]);
+    printf(
+        "  per ray, sphere alone: %.2f boxes, %.2f primitives; on the floor under the light: "
+        "%.2f boxes, %.2f primitives\n",
+        visits[0],
+        tests[0],
+        visits[1],
+        tests[1]);
+    CHECK(hits[1] > hits[0] && hits[0] > 1000);
+    CHECK_MSG(
+        tests[0] < s.n_triangles / 20.0 && tests[1] <= tests[0] + 2.5,
+        "%.2f primitives tested per ray, %.2f without the floor and light",
+        tests[1],
+        tests[0]);
+    CHECK_MSG(
+        visits[1] <= 1.1 * visits[0],
+        "%.2f boxes tested per ray, %.2f without the floor and light",
+        visits[1],
+        visits[0]);
+    check_scene_rays(&s, 10000, 92, "sphere on a floor under a light", 0.5);
+    scene_free(&s);
+}
+
+/* A Cornell box in memory: five walls 2 x 2, two spheres and a light, all
+ * large against the box: every one set aside, no tree. */
+TEST(every_primitive_large)
+{
+    struct scene s = {0};
+    vec3 o = vec3_make(-1, 0, -1);
+    add_quad(&s, o, vec3_make(0, 0, 2), vec3_make(2, 0, 0));
+    add_quad(&s, vec3_make(-1, 2, -1), vec3_make(2, 0, 0), vec3_make(0, 0, 2));
+    add_quad(&s, o, vec3_make(2, 0, 0), vec3_make(0, 2, 0));
+    add_quad(&s, o, vec3_make(0, 2, 0), vec3_make(0, 0, 2));
+    add_quad(&s, vec3_make(1, 0, -1), vec3_make(0, 0, 2), vec3_make(0, 2, 0));
+    add_sphere(&s, vec3_make(-0.45, 0.4, -0.3), 0.4);
+    add_sphere(&s, vec3_make(0.45, 0.3, 0.3), 0.3);
+    add_area_light(&s, vec3_make(-0.25, 1.98, -0.25), vec3_make(0.5, 0, 0), vec3_make(0, 0, 0.5));
+    struct world w = world_make(&s);
+    struct bvh bvh;
+    build_checked(&w, &bvh);
+    int expect = w.n_prims < BVH_MAX_ASIDE ? w.n_prims : BVH_MAX_ASIDE;
+    CHECK_MSG(bvh.n_aside == expect, "%d of %d set aside", bvh.n_aside, w.n_prims);
+    CHECK(w.n_prims > BVH_MAX_ASIDE || bvh.n_nodes == 0);
+    bvh_free(&bvh);
+    check_scene_rays(&s, 10000, 93, "Cornell box", 0.5);
+    scene_free(&s);
+}
+
+/* 30 quads through the origin, growing in size, every one large: only the
+ * BVH_MAX_ASIDE largest are set aside, the others go into the tree. */
+TEST(at_most_the_cap_set_aside)
+{
+    struct scene s = {0};
+    const int n = 30;
+    for (int i = 0; i < n; i++) {
+        real size = 1 + (real)i / 10;
+        vec3 e1 = vec3_make(size, 0, 0);
+        vec3 e2 = vec3_make(0, size, size / 2);
+        add_quad(&s, vec3_scale(vec3_add(e1, e2), -0.5), e1, e2);
+    }
+    struct world w = world_make(&s);
+    struct bvh bvh;
+    build_checked(&w, &bvh);
+    CHECK_MSG(bvh.n_aside == BVH_MAX_ASIDE, "%d set aside", bvh.n_aside);
+    int not_largest = 0;
+    for (int k = 0; k < bvh.n_aside; k++) {
+        not_largest += bvh.prims[k] != n - bvh.n_aside + k;
+    }
+    CHECK_MSG(not_largest == 0, "%d set aside are not the largest", not_largest);
+    bvh_free(&bvh);
+    check_scene_rays(&s, 10000, 94, "large quads", 0.5);
+    scene_free(&s);
+}
+
+/* Primitives of similar sizes (a closed sphere, a terrain, a soup): nothing
+ * is set aside. */
+TEST(similar_sizes_set_nothing_aside)
+{
+    const double center[3] = {0.25, -0.5, 1};
+    for (int i = 0; i < 3; i++) {
+        struct scene s = {0};
+        if (i == 0) {
+            add_mesh_once(&s, meshgen_sphere(40, 60, 2, center, 0.05, 9));
+        } else if (i == 1) {
+            add_mesh_once(&s, meshgen_terrain(60, 60, 4, 0.8, 81));
+        } else {
+            add_soup(&s, 2000, 95, 10, 1, 0.1);
+        }
+        struct world w = world_make(&s);
+        struct bvh bvh;
+        build_checked(&w, &bvh);
+        CHECK_MSG(bvh.n_aside == 0, "scene %d: %d set aside", i, bvh.n_aside);
+        bvh_free(&bvh);
+        scene_free(&s);
+    }
+}
+
 TEST_MAIN(
     TEST_ENTRY(structure_of_random_soups),
-    TEST_ENTRY(single_primitive_is_one_leaf),
+    TEST_ENTRY(single_primitive_is_set_aside),
     TEST_ENTRY(empty_world),
     TEST_ENTRY(coincident_centroids_terminate),
     TEST_ENTRY(flat_scene),
@@ -967,4 +1128,8 @@ TEST_MAIN(
     TEST_ENTRY(traversal_raises_no_invalid_operation),
     TEST_ENTRY(agrees_at_t_max_limits),
     TEST_ENTRY(any_hit_agrees_with_closest_hit),
-    TEST_ENTRY(cost_grows_as_log_n))
+    TEST_ENTRY(cost_grows_as_log_n),
+    TEST_ENTRY(large_primitives_add_no_box_tests),
+    TEST_ENTRY(every_primitive_large),
+    TEST_ENTRY(at_most_the_cap_set_aside),
+    TEST_ENTRY(similar_sizes_set_nothing_aside))
