@@ -43,6 +43,22 @@ lowdisc_reverse_bits(uint32_t x)
     return x;
 }
 
+/* The bits of each 32-bit half of x reversed, by one pass over 64 bits
+ * (which also swaps the halves: a << 32 | b becomes
+ * reverse(b) << 32 | reverse(a)): two reversals for the price of one and
+ * a little, since the steps are the same instructions on wider words. */
+static inline uint64_t
+lowdisc_reverse_bits_pair(uint64_t x)
+{
+    x = (x << 32) | (x >> 32);
+    x = ((x & 0x0000ffff0000ffffu) << 16) | ((x & 0xffff0000ffff0000u) >> 16);
+    x = ((x & 0x00ff00ff00ff00ffu) << 8) | ((x & 0xff00ff00ff00ff00u) >> 8);
+    x = ((x & 0x0f0f0f0f0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0f0f0f0f0u) >> 4);
+    x = ((x & 0x3333333333333333u) << 2) | ((x & 0xccccccccccccccccu) >> 2);
+    x = ((x & 0x5555555555555555u) << 1) | ((x & 0xaaaaaaaaaaaaaaaau) >> 1);
+    return x;
+}
+
 /* Owen's nested scramble done on the reversed bits r of a binary fraction
  * (its first digit the lowest bit of r): adding the seed and xoring with
  * multiples of r by even constants change each bit by a function of the
@@ -109,32 +125,75 @@ lowdisc_to_real(uint32_t x)
 #endif
 }
 
+/* The seed of sequence `counter` of a family of sequences keyed by key
+ * (a pixel's, say): a Weyl step, as SplitMix64 takes its states (Steele,
+ * Lea and Flood, "Fast Splittable Pseudorandom Number Generators", 2014).
+ * lowdisc_point1/2 mix the seed with rng_mix64 (SplitMix64's output
+ * function), so distinct counters give unrelated sequences without a hash
+ * here. */
+static inline uint64_t
+lowdisc_family_seed(uint64_t key, uint64_t counter)
+{
+    return key + counter * 0x9e3779b97f4a7c15u;
+}
+
+/* A second 32-bit seed from a first, cheaply (Burley 2020 derives each
+ * dimension's scramble seed by this hash_combine, after Boost's). */
+static inline uint32_t
+lowdisc_next_seed(uint32_t seed)
+{
+    return seed ^ (0x9e3779bau + (seed << 6) + (seed >> 2));
+}
+
 /* Point `index` of the scrambled 2D sequence chosen by seed (any 64 bits:
- * a hash of the image seed, the pixel and the use). */
+ * lowdisc_family_seed() of a hash of the image seed and the pixel, and
+ * the use), given the index's bits reversed (lowdisc_reverse_bits(index),
+ * where the shuffle takes them: a caller that draws many sequences at one
+ * index reverses it once).  Three scrambles, with three 32-bit seeds: the
+ * index's (the shuffle) and each dimension's. */
 static inline void
-lowdisc_point2(uint32_t index, uint64_t seed, real *u, real *v)
+lowdisc_point2_reversed(uint32_t index_reversed, uint64_t seed, real *u, real *v)
 {
     uint64_t h = rng_mix64(seed);
-    uint32_t shuffled = lowdisc_owen_scramble(index, (uint32_t)h);
+    uint32_t seed_x = (uint32_t)(h >> 32);
+    uint32_t shuffled = lowdisc_reverse_bits(lowdisc_scramble_reversed(index_reversed, (uint32_t)h));
     uint32_t x;
     uint32_t y;
     /* Scrambled in the reversed domain, mirrored once at the end:
-     * reverse(scramble(reverse(reverse(r)))) = reverse(scramble(r)). */
+     * reverse(scramble(reverse(reverse(r)))) = reverse(scramble(r)); both
+     * dimensions mirrored together. */
     lowdisc_sobol2_reversed(shuffled, &x, &y);
-    uint64_t h2 = rng_mix64(h);
-    *u = lowdisc_to_real(lowdisc_reverse_bits(lowdisc_scramble_reversed(x, (uint32_t)(h >> 32))));
-    *v = lowdisc_to_real(lowdisc_reverse_bits(lowdisc_scramble_reversed(y, (uint32_t)h2)));
+    uint64_t both = lowdisc_reverse_bits_pair(
+        (uint64_t)lowdisc_scramble_reversed(x, seed_x) << 32
+        | lowdisc_scramble_reversed(y, lowdisc_next_seed(seed_x)));
+    *u = lowdisc_to_real((uint32_t)both);
+    *v = lowdisc_to_real((uint32_t)(both >> 32));
 }
 
-/* Point `index` of the scrambled 1D sequence chosen by seed: a stratified
- * sequence (the first 2^m points, one in each interval of length 2^-m). */
+/* Point `index` of the scrambled 2D sequence chosen by seed. */
+static inline void
+lowdisc_point2(uint32_t index, uint64_t seed, real *u, real *v)
+{
+    lowdisc_point2_reversed(lowdisc_reverse_bits(index), seed, u, v);
+}
+
+/* Point `index` of the scrambled 1D sequence chosen by seed, given the
+ * index's bits reversed: a stratified sequence (the first 2^m points, one
+ * in each interval of length 2^-m). */
+static inline real
+lowdisc_point1_reversed(uint32_t index_reversed, uint64_t seed)
+{
+    uint64_t h = rng_mix64(seed);
+    uint32_t shuffled = lowdisc_reverse_bits(lowdisc_scramble_reversed(index_reversed, (uint32_t)h));
+    return lowdisc_to_real(
+        lowdisc_reverse_bits(lowdisc_scramble_reversed(shuffled, (uint32_t)(h >> 32))));
+}
+
+/* Point `index` of the scrambled 1D sequence chosen by seed. */
 static inline real
 lowdisc_point1(uint32_t index, uint64_t seed)
 {
-    uint64_t h = rng_mix64(seed);
-    uint32_t shuffled = lowdisc_owen_scramble(index, (uint32_t)h);
-    return lowdisc_to_real(
-        lowdisc_reverse_bits(lowdisc_scramble_reversed(shuffled, (uint32_t)(h >> 32))));
+    return lowdisc_point1_reversed(lowdisc_reverse_bits(index), seed);
 }
 
 #endif /* LOWDISC_H */

@@ -452,11 +452,13 @@ struct emitter {
     int number;
 };
 
-/* The seed of the Sobol sequences of light `number` at this vertex. */
+/* The seed of the Sobol sequences of light `number` at this vertex: in
+ * the family of the vertex's seed, past the counters render.c gives the
+ * other uses (depth << 8 | use). */
 static uint64_t
 light_seed(const struct shadow_sampling *sampling, int number)
 {
-    return sampling->lowdisc_seed ^ rng_mix64((uint64_t)number + 1);
+    return lowdisc_family_seed(sampling->lowdisc_seed, ((uint64_t)number + 1) << 32);
 }
 
 /* The uniform numbers (u, v) of shadow ray i of n to a light: with the

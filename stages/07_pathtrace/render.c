@@ -97,12 +97,12 @@ enum draw_use {
     DRAW_LIGHT, /* the shadow rays' (light.c derives one sequence per light) */
 };
 
-/* The sequence of one use at one depth: a seed of its own, derived from
- * the pixel's key. */
+/* The sequence of one use at one depth: a seed of its own in the family
+ * of the pixel's key (the camera samples' sequence is the key's own). */
 static uint64_t
 draw_seed(const struct path *path, enum draw_use use)
 {
-    return path->id.key ^ rng_mix64(((uint64_t)path->depth << 8) | (uint64_t)use);
+    return lowdisc_family_seed(path->id.key, ((uint64_t)path->depth << 8) | (uint64_t)use);
 }
 
 /* Next-event estimation: the direct light reaching the diffuse part of the
@@ -187,8 +187,9 @@ bounce_numbers(
 {
     if (renderer->sampler == SAMPLER_SOBOL) {
         bool choice = m->kind == MAT_GLASS || m->kind == MAT_BLEND;
-        u[0] = choice ? lowdisc_point1(path->id.index, draw_seed(path, DRAW_LOBE)) : 0;
-        lowdisc_point2(path->id.index, draw_seed(path, DRAW_DIRECTION), &u[1], &u[2]);
+        uint32_t index = path->id.index_reversed;
+        u[0] = choice ? lowdisc_point1_reversed(index, draw_seed(path, DRAW_LOBE)) : 0;
+        lowdisc_point2_reversed(index, draw_seed(path, DRAW_DIRECTION), &u[1], &u[2]);
         return;
     }
     for (int i = 0; i < 3; i++) {
@@ -284,7 +285,7 @@ roulette_number(const struct renderer *renderer, const struct path *path, struct
         if (path->depth < renderer->rr_depth) {
             return 0;
         }
-        return lowdisc_point1(path->id.index, draw_seed(path, DRAW_ROULETTE));
+        return lowdisc_point1_reversed(path->id.index_reversed, draw_seed(path, DRAW_ROULETTE));
     }
     return rng_uniform(rng);
 }
@@ -400,10 +401,11 @@ sum_samples(
     uint64_t key = rng_mix64(renderer->seed ^ rng_mix64(((uint64_t)py << 32) | (uint32_t)px));
     vec3 sum = vec3_splat(0);
     for (int i = first; i < first + count; i++) {
+        struct sample_id id = {key, (uint32_t)i, lowdisc_reverse_bits((uint32_t)i)};
         real dx;
         real dy;
         if (pattern == AA_SOBOL) {
-            lowdisc_point2((uint32_t)i, key, &dx, &dy);
+            lowdisc_point2_reversed(id.index_reversed, key, &dx, &dy);
         } else {
             int cell = shuffled_index(i, renderer->spp, key);
             sample_position(pattern, cell, renderer->spp, rng, &dx, &dy);
@@ -411,7 +413,6 @@ sum_samples(
         ray primary = camera_ray(&renderer->camera, (real)px + dx, (real)py + dy);
         st->rays_camera++;
         trace_sample(st, i, (real)px + dx, (real)py + dy, primary);
-        struct sample_id id = {key, (uint32_t)i};
         vec3 l = trace(renderer, primary, 1, id, rng, st);
         trace_sample_done(st, l);
         *lum_min = fmin(*lum_min, luminance(l));

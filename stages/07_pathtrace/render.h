@@ -83,10 +83,12 @@ struct renderer {
 
 /* Which sample of which pixel a path is: the pixel's scramble key (from
  * the seed and the pixel) and the sample's index among the pixel's spp.
- * The Sobol sampler draws point `index` of sequences scrambled by key. */
+ * The Sobol sampler draws point `index` of sequences scrambled by key,
+ * from the index's bits reversed (lowdisc.h), reversed once per sample. */
 struct sample_id {
     uint64_t key;
     uint32_t index;
+    uint32_t index_reversed;
 };
 
 /* A path being traced: its throughput beta (the product of the sampling

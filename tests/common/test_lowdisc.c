@@ -4,7 +4,10 @@
  * a (0,m,2)-net (one point in each of the 2^m cells of every shape
  * 2^a x 2^(m-a)); the 1D points are stratified likewise; one point over
  * many seeds is uniform (chi-square); the two Sobol dimensions match the
- * definition by direction numbers; seeds give different points.
+ * definition by direction numbers; seeds give different points; the
+ * sequences of one family (lowdisc_family_seed(), one per use of a
+ * sample) are independent of each other; the paired bit reversal reverses
+ * each half.
  */
 #include "check.h"
 #include "lowdisc.h"
@@ -131,9 +134,67 @@ TEST(seeds_give_different_points)
     CHECK(same == 0);
 }
 
+/* Point i of the sequences of two neighbouring counters of one family,
+ * over many keys: their pairs fall evenly in 8 x 8 cells (chi-square below
+ * its 0.001 quantile, df 63: 103.4), as independent points do; the same
+ * sequence would put them all on the diagonal.  For the 1D points (the
+ * roulette's, say) and the 2D ones (a bounce's direction against the
+ * shadow ray's point), and u against v of one 2D point. */
+TEST(sequences_of_one_family_are_independent)
+{
+    enum {
+        KEYS = 16384
+    };
+
+    int pairs_1d[64] = {0};
+    int pairs_2d[64] = {0};
+    int within[64] = {0};
+    for (uint64_t k = 0; k < KEYS; k++) {
+        uint64_t key = rng_mix64(k);
+        uint32_t i = (uint32_t)(k % 16);
+        real a = lowdisc_point1(i, lowdisc_family_seed(key, 256));
+        real b = lowdisc_point1(i, lowdisc_family_seed(key, 257));
+        pairs_1d[(int)(a * 8) * 8 + (int)(b * 8)]++;
+        real u1;
+        real v1;
+        real u2;
+        real v2;
+        lowdisc_point2(i, lowdisc_family_seed(key, 258), &u1, &v1);
+        lowdisc_point2(i, lowdisc_family_seed(key, 259), &u2, &v2);
+        pairs_2d[(int)(u1 * 8) * 8 + (int)(u2 * 8)]++;
+        within[(int)(u1 * 8) * 8 + (int)(v1 * 8)]++;
+    }
+    double chi2[3] = {0, 0, 0};
+    double e = KEYS / 64.0;
+    for (int c = 0; c < 64; c++) {
+        chi2[0] += (pairs_1d[c] - e) * (pairs_1d[c] - e) / e;
+        chi2[1] += (pairs_2d[c] - e) * (pairs_2d[c] - e) / e;
+        chi2[2] += (within[c] - e) * (within[c] - e) / e;
+    }
+    printf("chi-square (df 63): 1D pairs %.1f, 2D pairs %.1f, u and v %.1f\n", chi2[0], chi2[1],
+           chi2[2]);
+    CHECK(chi2[0] < 103.4);
+    CHECK(chi2[1] < 103.4);
+    CHECK(chi2[2] < 103.4);
+}
+
+TEST(reversing_a_pair_reverses_each_half)
+{
+    int wrong = 0;
+    for (uint64_t k = 0; k < 1000; k++) {
+        uint64_t x = rng_mix64(k);
+        uint64_t r = lowdisc_reverse_bits_pair(x);
+        wrong += (uint32_t)r != lowdisc_reverse_bits((uint32_t)(x >> 32))
+                 || (uint32_t)(r >> 32) != lowdisc_reverse_bits((uint32_t)x);
+    }
+    CHECK_MSG(wrong == 0, "%d of 1000 pairs reversed wrongly", wrong);
+}
+
 TEST_MAIN(
     TEST_ENTRY(first_points_and_aligned_blocks_are_nets),
     TEST_ENTRY(one_dimensional_points_are_stratified),
     TEST_ENTRY(a_point_is_uniform_over_seeds),
     TEST_ENTRY(sobol_dimensions_match_their_direction_numbers),
-    TEST_ENTRY(seeds_give_different_points))
+    TEST_ENTRY(seeds_give_different_points),
+    TEST_ENTRY(sequences_of_one_family_are_independent),
+    TEST_ENTRY(reversing_a_pair_reverses_each_half))
