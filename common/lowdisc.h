@@ -75,11 +75,13 @@ lowdisc_scramble_reversed(uint32_t r, uint32_t seed)
     return r;
 }
 
-/* Owen's nested scramble of the binary fraction x / 2^32 by seed. */
+/* Owen's nested scramble of the binary fraction x / 2^32 by seed, given
+ * x's bits reversed (r = lowdisc_reverse_bits(x)): a caller that has them
+ * saves a reversal. */
 static inline uint32_t
-lowdisc_owen_scramble(uint32_t x, uint32_t seed)
+lowdisc_owen_scramble_reversed(uint32_t r, uint32_t seed)
 {
-    return lowdisc_reverse_bits(lowdisc_scramble_reversed(lowdisc_reverse_bits(x), seed));
+    return lowdisc_reverse_bits(lowdisc_scramble_reversed(r, seed));
 }
 
 /* The first two Sobol dimensions of point `index`, as 32-bit fractions.
@@ -156,7 +158,7 @@ lowdisc_point2_reversed(uint32_t index_reversed, uint64_t seed, real *u, real *v
 {
     uint64_t h = rng_mix64(seed);
     uint32_t seed_x = (uint32_t)(h >> 32);
-    uint32_t shuffled = lowdisc_reverse_bits(lowdisc_scramble_reversed(index_reversed, (uint32_t)h));
+    uint32_t shuffled = lowdisc_owen_scramble_reversed(index_reversed, (uint32_t)h);
     uint32_t x;
     uint32_t y;
     /* Scrambled in the reversed domain, mirrored once at the end:
@@ -184,9 +186,10 @@ static inline real
 lowdisc_point1_reversed(uint32_t index_reversed, uint64_t seed)
 {
     uint64_t h = rng_mix64(seed);
-    uint32_t shuffled = lowdisc_reverse_bits(lowdisc_scramble_reversed(index_reversed, (uint32_t)h));
-    return lowdisc_to_real(
-        lowdisc_reverse_bits(lowdisc_scramble_reversed(shuffled, (uint32_t)(h >> 32))));
+    uint32_t shuffled = lowdisc_owen_scramble_reversed(index_reversed, (uint32_t)h);
+    /* The 1D Sobol point (van der Corput's) has the index's bits as its
+     * digits reversed. */
+    return lowdisc_to_real(lowdisc_owen_scramble_reversed(shuffled, (uint32_t)(h >> 32)));
 }
 
 /* Point `index` of the scrambled 1D sequence chosen by seed. */

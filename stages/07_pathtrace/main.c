@@ -67,12 +67,22 @@ parse_command_line(
             .help = "Russian roulette from the N-th ray on, camera ray = 1 (default 3)",
         },
         {
+            .name = "rr-threshold",
+            .kind = OPT_REAL,
+            .dest = &renderer->rr_threshold,
+            .min = 0.001,
+            .max = 1,
+            .arg = "T",
+            .help = "Russian roulette: survive with probability max(throughput) / T, at most "
+                    "0.95 (default 0.4)",
+        },
+        {
             .name = "sampler",
             .kind = OPT_CHOICE,
             .dest = &renderer->sampler,
             .choices = "independent|sobol",
             .arg = "KIND",
-            .help = "random numbers of the bounces: independent (default), sobol",
+            .help = "random numbers of the paths: independent, sobol (default)",
         },
         {
             .name = "brute-force-max",
@@ -89,7 +99,7 @@ parse_command_line(
             .dest = &renderer->aa,
             .choices = "grid|jitter|adaptive|sobol",
             .arg = "PATTERN",
-            .help = "where camera samples go in a pixel: grid, jitter (default), adaptive, sobol",
+            .help = "where camera samples go in a pixel: grid, jitter, adaptive, sobol (default)",
         },
         {
             .name = "aa-threshold",
@@ -256,11 +266,13 @@ main(int argc, char **argv)
     struct renderer renderer = {
         .shadow = {.samples = 1},
         .max_depth = 1 << 16,
-        .aa = AA_JITTER,
+        .aa = AA_SOBOL,
         .aa_threshold = (real)0.05,
         .nee = true,
         .rr = true,
         .rr_depth = RR_MIN_DEPTH,
+        .rr_threshold = (real)RR_THRESHOLD,
+        .sampler = SAMPLER_SOBOL,
     };
     bool use_bvh = true;
     int brute_max = BRUTE_FORCE_MAX_PRIMS;

@@ -257,16 +257,22 @@ shade(
 /* Russian roulette (Arvo and Kirk, "Particle Transport and Image Synthesis",
  * 1990): past the first few bounces a path survives with probability q
  * taken from its throughput, and a survivor's throughput is divided by q, so
- * the expected value is unchanged while dim paths stop early.  Returns q
- * (1 before min_depth). */
+ * the expected value is unchanged while dim paths stop early.  With
+ * q = max(beta) / threshold a survivor carries the throughput `threshold`
+ * (in its largest channel): roulette holds the paths' weights near that
+ * level, as the weight windows of neutron transport do (used for light
+ * by Vorba and Krivanek, "Adjoint-Driven Russian Roulette and Splitting
+ * in Light Transport Simulation", 2016), instead of raising them to 1,
+ * which made each rare long path a bright sample.  Returns q (1 before
+ * min_depth). */
 static real
-russian_roulette(struct path *path, int min_depth, real u)
+russian_roulette(struct path *path, int min_depth, real threshold, real u)
 {
     /* LAB 07: Russian roulette */
     if (path->depth < min_depth) {
         return 1;
     }
-    real q = fmin(vec3_max_comp(path->beta), (real)RR_MAX_SURVIVAL);
+    real q = fmin(vec3_max_comp(path->beta) / threshold, (real)RR_MAX_SURVIVAL);
     if (u >= q) {
         path->beta = vec3_splat(0);
     } else {
@@ -313,7 +319,7 @@ trace(
         l = vec3_add(l, shade(renderer, &r, &h, &path, rng, st));
         if (renderer->rr) {
             real u = roulette_number(renderer, &path, rng);
-            real q = russian_roulette(&path, renderer->rr_depth, u);
+            real q = russian_roulette(&path, renderer->rr_depth, renderer->rr_threshold, u);
             trace_roulette(st, q, u, !vec3_is_zero(path.beta));
         }
         path.depth++;

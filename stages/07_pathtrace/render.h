@@ -27,6 +27,16 @@
  * unless --rr-depth says otherwise. */
 #define RR_MIN_DEPTH 3
 
+/* Russian roulette lets a path survive with probability max(beta) / this
+ * (at most RR_MAX_SURVIVAL), unless --rr-threshold says otherwise: the
+ * survivors carry this throughput (russian_roulette() in render.c).
+ * Measured (docs/stages/07_pathtrace.md, "Where Russian roulette starts,
+ * and what a survivor carries"): 0.3 to 0.5 render the Cornell boxes 1.1
+ * to 1.3 times as efficiently as 1 (pbrt's and Mitsuba's rule, which makes
+ * each rare long path a bright sample) from its best start; where roulette
+ * starts matters far less then. */
+#define RR_THRESHOLD 0.4
+
 /* Russian roulette's survival probability is at most this: a path whose
  * throughput is 1 or more (white diffuse, mirror, glass) still ends with
  * probability 5% at each bounce, so even in a closed white room a path has
@@ -77,6 +87,7 @@ struct renderer {
     bool mis; /* ... combined with the paths that hit them (multiple importance sampling) */
     bool rr; /* Russian roulette */
     int rr_depth; /* ... from this many rays on */
+    real rr_threshold; /* ... survival max(beta) / rr_threshold (at most RR_MAX_SURVIVAL) */
     int sampler; /* enum sampler_kind */
     real time_limit; /* seconds; 0: none */
 };

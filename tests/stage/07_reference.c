@@ -235,7 +235,9 @@ check_scene(const struct case_ *c, uint64_t seed, const char *const knobs[])
     pathcheck_reference_free(&ref);
 }
 
-static const char *const independent[] = {NULL};
+/* The independent sampler and jittered pixel positions (the default is
+ * Sobol's). */
+static const char *const independent[] = {"--sampler", "independent", "--aa", "jitter", NULL};
 
 /* Owen-scrambled Sobol points for the pixel positions and every bounce's
  * lobe, direction and roulette numbers: still unbiased. */

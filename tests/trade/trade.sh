@@ -158,6 +158,7 @@ if [ "$MODE" = quick ]; then
     PT_SPP_MAIN_EXTRA="64"
     PT_DEPTH="2"
     PT_RR_DEPTH="2 5"
+    PT_RR_THRESHOLD="0.4 1"
     MESH_B="1 3 9 28" # 0, 24, 288, 3,024 triangles
     MESH_BRUTE_MAX=1000
 else
@@ -175,6 +176,7 @@ else
     PT_SPP_MAIN_EXTRA="256"
     PT_DEPTH="1 2 3 4 8"
     PT_RR_DEPTH="2 3 4 5 6 8"
+    PT_RR_THRESHOLD="0.2 0.3 0.4 0.5 0.7 1"
     MESH_B="1 2 3 5 9 16 28 50 88 158 280" # 0 (the box alone), 8 ... 312,480 triangles
     MESH_BRUTE_MAX=31000 # brute force grows as pixels x triangles: capped
 fi
@@ -289,9 +291,10 @@ plan_pathtrace() { # 07: spp x NEE on/off x RR on/off; the other levers; max dep
             done
         done
         if has "$st" --sampler; then
+            # The Sobol sampler is the default: against the independent one.
             for n in $PT_SPP $PT_SPP_MAIN_EXTRA; do
-                emit_seeds "$(pt_seeds "$n")" "$st" "$sc" "spp=$n nee=on rr=on sampler=sobol aa=sobol" \
-                    "nee=on rr=on sampler=sobol aa=sobol" "$n" 0
+                emit_seeds "$(pt_seeds "$n")" "$st" "$sc" "spp=$n nee=on rr=on sampler=independent aa=jitter" \
+                    "nee=on rr=on sampler=independent aa=jitter" "$n" 0
             done
         fi
         if has "$st" --mis && area_scene "$sc"; then
@@ -308,8 +311,20 @@ plan_pathtrace() { # 07: spp x NEE on/off x RR on/off; the other levers; max dep
             done
         fi
         if has "$st" --rr-depth; then
+            # Where roulette starts, with each sampler: stratified early
+            # bounces make a late start pay more (docs/stages/07_pathtrace.md).
             for d in $PT_RR_DEPTH; do
                 emit_seeds "$SEEDS" "$st" "$sc" "spp=16 nee=on rr=on rrdepth=$d" "rr start (spp=16)" "$d" 0
+                if has "$st" --sampler; then
+                    emit_seeds "$SEEDS" "$st" "$sc" "spp=16 nee=on rr=on rrdepth=$d sampler=independent aa=jitter" \
+                        "rr start, independent (spp=16)" "$d" 0
+                fi
+            done
+        fi
+        if has "$st" --rr-threshold; then
+            for d in $PT_RR_THRESHOLD; do
+                emit_seeds "$SEEDS" "$st" "$sc" "spp=16 nee=on rr=on rrthreshold=$d" \
+                    "rr threshold (spp=16)" "$d" 0
             done
         fi
         for d in $PT_DEPTH; do
@@ -386,6 +401,7 @@ knob_args() {
         brute=*) args="$args --brute-force-max ${k#*=}" ;;
         sampler=*) args="$args --sampler ${k#*=}" ;;
         rrdepth=*) args="$args --rr-depth ${k#*=}" ;;
+        rrthreshold=*) args="$args --rr-threshold ${k#*=}" ;;
         mis=*) args="$args --mis ${k#*=}" ;;
         light=*) args="$args --light-sampling ${k#*=}" ;;
         nee=off) args="$args --no-nee" ;;
