@@ -317,7 +317,7 @@ plan_pathtrace() { # 07: spp x NEE on/off x RR on/off; the other levers; max dep
                 emit_seeds "$SEEDS" "$st" "$sc" "spp=16 nee=on rr=on rrdepth=$d" "rr start (spp=16)" "$d" 0
                 if has "$st" --sampler; then
                     emit_seeds "$SEEDS" "$st" "$sc" "spp=16 nee=on rr=on rrdepth=$d sampler=independent aa=jitter" \
-                        "rr start, independent (spp=16)" "$d" 0
+                        "rr start independent (spp=16)" "$d" 0
                 fi
             done
         fi
