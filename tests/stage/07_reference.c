@@ -27,9 +27,10 @@
  *    C_Mitsuba = relmse_noise_floor * spp (0.124 for cornell_diffuse_area,
  *    7.3 for the point light, whose light next to the ceiling makes
  *    fireflies, 2.2 for the specular scene), and we allow C = NOISE_RATIO
- *    * C_Mitsuba.  Measured spp * relMSE: 0.168, 9.1, 2.68 (1.35, 1.25 and
- *    1.23 times Mitsuba's, probably because Russian roulette starts at the
- *    third ray here and at the fifth in Mitsuba), stable to 2% over seeds.  spp * relMSE hardly
+ *    * C_Mitsuba.  Measured spp * relMSE with the independent sampler:
+ *    0.121, 7.08, 1.64 (0.98, 0.97 and 0.75 times Mitsuba's; 0.168, 9.1
+ *    and 2.68 with roulette's former T = 1: its survivors' full weight),
+ *    with the Sobol sampler 0.060, 6.74, 1.59.  spp * relMSE hardly
  *    depends on the resolution (a 2x2 box holds 4x the samples and has
  *    1/4 the variance): 0.159 at 256x256 and 0.168 at 128x128 for the
  *    area light (0.182 at 64x64, where edges weigh more), so Mitsuba's
