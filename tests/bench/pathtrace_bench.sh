@@ -3,11 +3,11 @@
 # beside Mitsuba 3 when it can be had.
 #
 # For each scene, stage 07 with its defaults (MIS on, lights sampled by
-# area, the Sobol sampler, Russian roulette from the fifth ray), with --mis
+# area, the Sobol sampler, Russian roulette threshold 0.4), with --mis
 # off (as before MIS), with --light-sampling solid-angle and auto, with the
 # independent sampler (--sampler independent --aa jitter), and with the
-# defaults before the Sobol sampler and the later roulette (--sampler
-# independent --aa jitter --rr-depth 3): spp x relMSE
+# defaults before the Sobol sampler and the roulette threshold (--sampler
+# independent --aa jitter --rr-threshold 1): spp x relMSE
 # against Mitsuba's converged reference (a constant for an unbiased
 # estimator: relMSE falls as 1/spp), seconds per spp at 256x256 on 2
 # threads, and from the two the time to reach the scene's target relMSE
@@ -152,7 +152,7 @@ for scene in $scenes; do
         echo "stagelight_07_independent $(ours "$scene" "$spp" "$round" \
             --sampler independent --aa jitter)" >>"$work/rows"
         echo "stagelight_07_former $(ours "$scene" "$spp" "$round" \
-            --sampler independent --aa jitter --rr-depth 3)" >>"$work/rows"
+            --sampler independent --aa jitter --rr-threshold 1)" >>"$work/rows"
         for v in $variants; do
             r=$(mitsuba "$v" "$scene" "$spp" "$round")
             [ -z "$r" ] || echo "mitsuba_$v $r" >>"$work/rows"
