@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """mitsuba_render.py - render a stagelight scene file with Mitsuba 3, timed.
 
-    mitsuba_render.py VARIANT SCENE SPP SEED THREADS OUT.pfm
+    mitsuba_render.py VARIANT SCENE SPP SEED THREADS OUT.pfm [BATCHES]
 
 Translates the statements the reference scenes use (camera, image,
 material diffuse/mirror/glass, quad, sphere, area_light, point_light,
@@ -10,7 +10,12 @@ triangle) into a Mitsuba scene as tests/reference/SCENES.md defines it
 5, the independent sampler, a box filter of one pixel, two-sided surfaces,
 one-sided black area lights), renders it once unmeasured (the LLVM variant
 compiles its kernels then) and once measured, writes the measured image as
-a little-endian PFM (rows bottom to top) and prints "seconds S".
+a little-endian PFM (rows bottom to top) and prints "seconds S cpu S".
+
+With BATCHES, a reference image instead: SPP samples in BATCHES renders of
+SPP / BATCHES each (seeds SEED, SEED + 1, ...; one render of all the samples
+at once would hold them all in memory), averaged, none of them a warm-up;
+the times printed are those of all the batches.
 
 Used by tests/bench/pathtrace_bench.sh; not part of make test.
 """
@@ -224,24 +229,37 @@ def write_pfm(path, img):
         f.write(np.ascontiguousarray(np.flipud(img), dtype="<f4").tobytes())
 
 
+def render(scene, spp, seed):
+    """One render, finished, as an array of its RGB."""
+    img = mi.render(scene, spp=spp, seed=seed)
+    dr.eval(img)
+    dr.sync_thread()
+    return np.array(img)[:, :, :3].astype(np.float64)
+
+
 def main():
-    if len(sys.argv) != 7:
-        fail("usage: mitsuba_render.py VARIANT SCENE SPP SEED THREADS OUT.pfm")
-    variant, path, spp, seed, threads, out = sys.argv[1:]
+    if len(sys.argv) not in (7, 8):
+        fail("usage: mitsuba_render.py VARIANT SCENE SPP SEED THREADS OUT.pfm [BATCHES]")
+    variant, path, spp, seed, threads, out = sys.argv[1:7]
+    batches = int(sys.argv[7]) if len(sys.argv) == 8 else 0
+    spp, seed = int(spp), int(seed)
     mi.set_variant(variant)
     dr.set_thread_count(int(threads))
-    scene = load(path, int(spp), int(seed))
-    img = mi.render(scene, spp=int(spp), seed=int(seed) + 1000)
-    dr.eval(img)
-    dr.sync_thread()
+    if batches and spp % batches:
+        fail("SPP must be a multiple of BATCHES")
+    per_render = spp // batches if batches else spp
+    scene = load(path, per_render, seed)
+    if not batches:
+        render(scene, spp, seed + 1000)  # the LLVM variant compiles its kernels here
     start = time.perf_counter()
     cpu_start = time.process_time()
-    img = mi.render(scene, spp=int(spp), seed=int(seed))
-    dr.eval(img)
-    dr.sync_thread()
+    if batches:
+        img = sum(render(scene, per_render, seed + b) for b in range(batches)) / batches
+    else:
+        img = render(scene, spp, seed)
     seconds = time.perf_counter() - start
     cpu = time.process_time() - cpu_start
-    write_pfm(out, np.array(img)[:, :, :3])
+    write_pfm(out, img)
     print("seconds %.4f cpu %.4f" % (seconds, cpu))
 
 

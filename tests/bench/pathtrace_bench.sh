@@ -11,8 +11,11 @@
 # against Mitsuba's converged reference (a constant for an unbiased
 # estimator: relMSE falls as 1/spp), seconds per spp at 256x256 on 2
 # threads, and from the two the time to reach the scene's target relMSE
-# (1e-3; 1e-2 for the caustics of cornell_specular_area; bunny_cornell, the
-# scene library's bunny in the box, has no reference and is timed only).
+# (1e-3; 1e-2 for the caustics of cornell_specular_area).  bunny_cornell,
+# the scene library's bunny in the box, has no reference in the repository:
+# Mitsuba LLVM renders one the first time (4096 spp in 16 batches, about 3
+# minutes; kept in build/bench-references/), and without Mitsuba it is timed
+# only.
 # Mitsuba 3 (`path` integrator, independent
 # sampler; variants llvm_ad_rgb and scalar_rgb) renders the same scenes
 # (tests/bench/mitsuba_render.py translates them), interleaved with ours:
@@ -22,7 +25,7 @@
 # of all threads is printed beside them, with the time to the target and
 # the ratio computed from it too (steadier on a loaded machine; on a quiet
 # one, wall-clock x 2 threads is about the processor time).  Without a
-# reference (bunny_cornell) the ratios are those of the seconds per spp.
+# reference the ratios are those of the seconds per spp.
 # Last, cornell_diffuse_area is rendered by stage 07 at the spp predicted
 # for relMSE 1e-3, to check the prediction.
 #
@@ -65,14 +68,27 @@ scene_file() {
     echo "$root/scenes/$1.scene"
 }
 
+# reference SCENE: the scene's converged GI image: the repository's
+# (tests/reference/), or the one this script had Mitsuba render
+# (build/bench-references/); nothing when there is neither.
+reference() {
+    for f in "$root/tests/reference/${1}_gi.pfm" "$root/build/bench-references/${1}_gi.pfm"; do
+        if [ -f "$f" ]; then
+            echo "$f"
+            return
+        fi
+    done
+}
+
 # relmse IMAGE SCENE: relMSE of IMAGE against the scene's GI reference
 # (-1 when there is none).
 relmse() {
-    if [ ! -f "$root/tests/reference/${2}_gi.pfm" ]; then
+    ref=$(reference "$2")
+    if [ -z "$ref" ]; then
         echo -1
         return
     fi
-    "$imgcmp" --csv "$1" "$root/tests/reference/${2}_gi.pfm" |
+    "$imgcmp" --csv "$1" "$ref" |
         awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "relmse") c = i }
                  NR == 2 { print $c }'
 }
@@ -137,6 +153,25 @@ else
     echo "Mitsuba 3 $("$python" -c 'import mitsuba; print(mitsuba.__version__)'):$variants" \
         "(LLVM: ${DRJIT_LIBLLVM_PATH:-none})"
 fi
+
+# The references the repository lacks, rendered once by Mitsuba LLVM
+# (its relMSE, ~1e-4 / 4096 x spp x relMSE, adds ~3% to the bench's 32-spp
+# figures at most, the same for every renderer).
+for scene in $scenes; do
+    case " $variants " in *" llvm_ad_rgb "*) ;; *) break ;; esac
+    [ -z "$(reference "$scene")" ] || continue
+    mkdir -p "$root/build/bench-references"
+    out=$root/build/bench-references/${scene}_gi.pfm
+    echo "$scene: no reference; Mitsuba LLVM renders one (4096 spp) into build/bench-references/"
+    if "$python" "$root/tests/bench/mitsuba_render.py" llvm_ad_rgb "$(scene_file "$scene")" \
+        4096 7001 2 "$out.tmp.pfm" 16 >/dev/null 2>"$work/mi.err"; then
+        mv -f "$out.tmp.pfm" "$out"
+    else
+        rm -f "$out.tmp.pfm"
+        echo "  (failed: $(tail -n 1 "$work/mi.err"); $scene is timed only)"
+    fi
+done
+
 echo "256x256, 2 threads, $spp spp, best of $rounds interleaved rounds;" \
     "load average $(cut -d' ' -f1-3 /proc/loadavg)"
 
