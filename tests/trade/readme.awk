@@ -451,6 +451,7 @@ function q_nee_rr(    j, sc, st, s, v, a, b, c, d, found, r, any) {
     print "It pays when the saved time outweighs the added noise; the time saved is largest where paths"
     print "are long (bright walls, open glass), the added noise largest where rare long paths carry the light."
     print ""
+    roulette()
     print "Path length: `--max-depth N` keeps paths of at most N segments, the camera ray included; relMSE"
     print "against GI at 16 spp for each N, then unbounded (with RR), then the direct-light floor (the"
     print "direct reference against the GI one), which the shortest paths that still see light converge to:"
@@ -678,4 +679,43 @@ function depth_line(st, sc,    r, k, n, d, line, a, spp) {
     a = find(st, sc, "nee=on rr=on", spp)
     printf "- %s, %s spp: max-depth %s; unbounded: %s; direct-light floor: %s.\n", sc, spp, line,
         a ? g3(GI[a]) : "-", (("floor_" sc) in INFO) ? g3(INFO["floor_" sc]) : "-"
+}
+
+# Russian roulette's two settings, each swept at 16 spp with the other at
+# its default: where it starts (--rr-depth, with each sampler) and the
+# throughput a survivor carries (--rr-threshold); the gain is against the
+# sweep's row at the stage's default (RR_MIN_DEPTH 3, RR_THRESHOLD 0.4).
+function roulette(    s, st, j, sc, f, fam, r, k, n, d, a, base, any, fams) {
+    fams[1] = "rr start (spp=16)"; fams[2] = "rr start independent (spp=16)"; fams[3] = "rr threshold (spp=16)"
+    any = 0
+    for (s = 1; s <= NST; s++) {
+        st = STAGE[s]
+        for (j = 1; j <= NSC; j++) {
+            sc = SCENE[j]
+            for (f = 1; f <= 3; f++) {
+                fam = fams[f]
+                n = 0
+                for (r = 1; r <= N; r++) if (S[r] == st && SC[r] == sc && F[r] == fam) d[++n] = r
+                if (!n) continue
+                for (r = 2; r <= n; r++) { a = d[r]; for (k = r - 1; k >= 1 && V[d[k]] + 0 > V[a] + 0; k--) d[k + 1] = d[k]; d[k + 1] = a }
+                base = find(st, sc, fam, f == 3 ? "0.4" : "3")
+                if (!any) {
+                    print "Russian roulette, its two settings swept at 16 spp (the other at its default): the ray it"
+                    print "starts at (`--rr-depth`, camera ray = 1; with the Sobol sampler, the default, and with the"
+                    print "independent one) and the throughput T a survivor carries (`--rr-threshold`, survival"
+                    print "min(max beta / T, 0.95)); gain = efficiency / that of the sweep's row at the defaults (3, 0.4):"
+                    print ""
+                    print "| stage | scene | sweep | value | relMSE | seconds | efficiency | gain |"
+                    print "|---|---|---|---|---|---|---|---|"
+                    any = 1
+                }
+                for (k = 1; k <= n; k++) {
+                    r = d[k]
+                    printf "| %s | %s | %s | %s | %s | %s | %s | %s |\n", st, sc, substr(fam, 1, length(fam) - 9), V[r],
+                        g3(GI[r]), secs(T[r]), g3(EFF[r]), base ? times(EFF[r] / EFF[base]) : "-"
+                }
+            }
+        }
+    }
+    if (any) print ""
 }
