@@ -664,6 +664,11 @@ function aliasing(    i, a, b, s) {
     printf "against its limit and stops; %s with `%s` reaches %s in %s.\n", S[b], K[b], g3(OWN[b]), secs(T[b])
 }
 
+# Sort rows d[1..n] by their swept value (insertion sort: a handful).
+function sort_by_value(d, n,    r, k, a) {
+    for (r = 2; r <= n; r++) { a = d[r]; for (k = r - 1; k >= 1 && V[d[k]] + 0 > V[a] + 0; k--) d[k + 1] = d[k]; d[k + 1] = a }
+}
+
 # relMSE vs GI along the max-depth curve of a stage on a scene.
 function depth_line(st, sc,    r, k, n, d, line, a, spp) {
     n = 0
@@ -673,7 +678,7 @@ function depth_line(st, sc,    r, k, n, d, line, a, spp) {
         spp = SPP[r]
     }
     if (!n) return
-    for (r = 2; r <= n; r++) { a = d[r]; for (k = r - 1; k >= 1 && V[d[k]] + 0 > V[a] + 0; k--) d[k + 1] = d[k]; d[k + 1] = a }
+    sort_by_value(d, n)
     line = ""
     for (k = 1; k <= n; k++) line = line (k > 1 ? ", " : "") V[d[k]] ": " g3(GI[d[k]])
     a = find(st, sc, "nee=on rr=on", spp)
@@ -697,7 +702,7 @@ function roulette(    s, st, j, sc, f, fam, r, k, n, d, a, base, any, fams) {
                 n = 0
                 for (r = 1; r <= N; r++) if (S[r] == st && SC[r] == sc && F[r] == fam) d[++n] = r
                 if (!n) continue
-                for (r = 2; r <= n; r++) { a = d[r]; for (k = r - 1; k >= 1 && V[d[k]] + 0 > V[a] + 0; k--) d[k + 1] = d[k]; d[k + 1] = a }
+                sort_by_value(d, n)
                 base = find(st, sc, fam, f == 3 ? "0.4" : "3")
                 if (!any) {
                     print "Russian roulette, its two settings swept at 16 spp (the other at its default): the ray it"
