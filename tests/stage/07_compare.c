@@ -85,7 +85,15 @@ render_to(const struct case_ *c, int spp, int seed, const char *path)
     snprintf(spp_text, sizeof spp_text, "%d", spp);
     snprintf(seed_text, sizeof seed_text, "%d", seed);
     snprintf(stats, sizeof stats, "%.*s.json", (int)(strlen(path) - 4), path);
+    /* The independent sampler: the merge test takes one render of SPP
+     * samples to have the variance of MERGE_K renders of SPP / MERGE_K
+     * (check_equal_within_noise), true of independent samples only (the
+     * Sobol sampler's long render converges faster than 1/spp). */
     const char *const args[] = {
+        "--sampler",
+        "independent",
+        "--aa",
+        "jitter",
         "-W",
         TEXT(SIZE),
         "-H",
