@@ -164,8 +164,9 @@ grade_07() {
 # 64 spp the caustics and their mirror images are sums of rare bright
 # paths: two renders that missed more of them than usual in one block
 # look darker there by many standard errors (measured on
-# cornell_specular_area: 3 of 12 seed pairs flagged a region, with the
-# independent sampler as with Sobol).  A region flagged at 64 spp is then
+# cornell_specular_area, seed pairs 1-2 to 11-12: 2 of 6 flagged a region
+# with the defaults, 2 of 6 with the former ones, the independent sampler
+# and roulette threshold 1).  A region flagged at 64 spp is then
 # judged as compare's hint says, by rendering again with 4 times the spp:
 # a bias keeps its size, a chance darkening fades (0 of 4 pairs flagged
 # at 256 spp).
