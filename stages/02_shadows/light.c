@@ -4,7 +4,7 @@
  */
 #include "light.h"
 
-#include "trace.h"
+#include "inspect.h"
 
 vec3
 point_irradiance(const struct hit *h, vec3 from, vec3 intensity)
@@ -35,13 +35,13 @@ area_light_intensity(const struct area_light *light, vec3 p)
 }
 
 void
-trace_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st)
+inspect_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st)
 {
     struct hit blocker = {.prim = -1};
     if (!clear && !world_intersect(w, shadow, t_max, &blocker, st)) {
         blocker.prim = -1;
     }
-    trace_shadow(st, shadow, t_max, blocker.prim, blocker.t);
+    inspect_shadow(st, shadow, t_max, blocker.prim, blocker.t);
 }
 
 bool
@@ -52,8 +52,8 @@ visible(const struct world *w, const struct hit *h, vec3 to, struct stats *st)
     ray shadow = spawn_ray_to(h, to, &t_max);
     st->rays_shadow++;
     bool clear = !world_occluded(w, shadow, t_max, st);
-    if (tracing(st)) {
-        trace_shadow_ray(w, shadow, t_max, clear, st);
+    if (inspecting(st)) {
+        inspect_shadow_ray(w, shadow, t_max, clear, st);
     }
     return clear;
     /* END LAB */
@@ -66,7 +66,7 @@ direct_irradiance(const struct world *w, const struct hit *h, struct stats *st)
     vec3 e = vec3_splat(0);
     for (int i = 0; i < s->n_point_lights; i++) {
         const struct point_light *light = &s->point_lights[i];
-        trace_light(st, TRACE_POINT_LIGHT, i);
+        inspect_light(st, TRACE_POINT_LIGHT, i);
         vec3 irradiance = point_irradiance(h, light->position, light->intensity);
         if (!vec3_is_zero(irradiance) && visible(w, h, light->position, st)) {
             e = vec3_add(e, irradiance);
@@ -74,7 +74,7 @@ direct_irradiance(const struct world *w, const struct hit *h, struct stats *st)
     }
     for (int i = 0; i < s->n_area_lights; i++) {
         const struct area_light *light = &s->area_lights[i];
-        trace_light(st, TRACE_AREA_LIGHT, i);
+        inspect_light(st, TRACE_AREA_LIGHT, i);
         vec3 center = area_light_center(light);
         vec3 irradiance = point_irradiance(h, center, area_light_intensity(light, h->p));
         if (!vec3_is_zero(irradiance) && visible(w, h, center, st)) {
@@ -83,7 +83,7 @@ direct_irradiance(const struct world *w, const struct hit *h, struct stats *st)
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
         const struct sphere_light *sphere = &s->sphere_lights[i];
-        trace_light(st, TRACE_SPHERE_LIGHT, i);
+        inspect_light(st, TRACE_SPHERE_LIGHT, i);
         vec3 irradiance = point_irradiance(h, sphere->center, sphere_light_intensity(sphere));
         if (!vec3_is_zero(irradiance) && visible(w, h, sphere->center, st)) {
             e = vec3_add(e, irradiance);

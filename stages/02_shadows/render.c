@@ -4,8 +4,8 @@
  */
 #include "render.h"
 
+#include "inspect.h"
 #include "light.h"
-#include "trace.h"
 
 /* The Lambertian albedo this stage shades a material with.  Materials whose
  * optics arrive in a later stage get the simplification feature_table.c
@@ -36,7 +36,7 @@ shade(const struct renderer *renderer, const struct hit *h, struct stats *st)
     vec3 e = direct_irradiance(&renderer->world, h, st);
     vec3 reflected = vec3_scale(e, INV_PI);
     vec3 l = vec3_mul(albedo, vec3_add(reflected, s->ambient));
-    trace_shade(st, albedo, e, s->ambient, l);
+    inspect_shade(st, albedo, e, s->ambient, l);
     return l;
 }
 
@@ -45,10 +45,10 @@ trace(const struct renderer *renderer, ray r, struct stats *st)
 {
     struct hit h;
     if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
-        trace_miss(st, 1, r, renderer->scene->background);
+        inspect_miss(st, 1, r, renderer->scene->background);
         return renderer->scene->background;
     }
-    trace_hit(st, 1, r, h.t, h.p, h.prim, h.material, h.ng, h.n, h.front_face);
+    inspect_hit(st, 1, r, &h);
     return shade(renderer, &h, st);
 }
 
@@ -61,8 +61,8 @@ render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
     real y = (real)py + (real)0.5;
     ray primary = camera_ray(&renderer->camera, x, y);
     st->rays_camera++;
-    trace_sample(st, 0, x, y, primary);
+    inspect_sample(st, 0, x, y, primary);
     vec3 l = trace(renderer, primary, st);
-    trace_sample_done(st, l);
+    inspect_sample_done(st, l);
     return l;
 }

@@ -29,10 +29,10 @@ struct shadow_sampling {
 /* The point of the light at (u, v) in [0,1)^2: uniform over its area. */
 vec3 sample_area_light(const struct area_light *light, real u, real v);
 
-/* For --pixel --trace (trace.h), called only when tracing: record the
+/* For --pixel --trace (inspect.h), called only when inspecting: record the
  * shadow ray and, when it is not clear, the nearest surface in its way
  * (found by a second, closest-hit query). */
-void trace_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st);
+void inspect_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st);
 
 /* Whether the segment from the surface at h to the point `to` is clear:
  * one shadow ray, an any-hit query. */

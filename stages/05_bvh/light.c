@@ -5,8 +5,8 @@
  */
 #include "light.h"
 
+#include "inspect.h"
 #include "optics.h"
-#include "trace.h"
 
 vec3
 point_irradiance(const struct hit *h, vec3 from, vec3 intensity)
@@ -32,13 +32,13 @@ sample_area_light(const struct area_light *light, real u, real v)
 }
 
 void
-trace_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st)
+inspect_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st)
 {
     struct hit blocker = {.prim = -1};
     if (!clear && !world_intersect(w, shadow, t_max, &blocker, st)) {
         blocker.prim = -1;
     }
-    trace_shadow(st, shadow, t_max, blocker.prim, blocker.t);
+    inspect_shadow(st, shadow, t_max, blocker.prim, blocker.t);
 }
 
 bool
@@ -49,8 +49,8 @@ visible(const struct world *w, const struct hit *h, vec3 to, struct stats *st)
     ray shadow = spawn_ray_to(h, to, &t_max);
     st->rays_shadow++;
     bool clear = !world_occluded(w, shadow, t_max, st);
-    if (tracing(st)) {
-        trace_shadow_ray(w, shadow, t_max, clear, st);
+    if (inspecting(st)) {
+        inspect_shadow_ray(w, shadow, t_max, clear, st);
     }
     return clear;
     /* END LAB */
@@ -73,10 +73,10 @@ transmittance(const struct world *w, const struct hit *h, vec3 to, struct stats 
         ray shadow = spawn_ray_to(&at, to, &t_max);
         st->rays_shadow++;
         if (!world_intersect(w, shadow, t_max, &at, st)) {
-            trace_shadow(st, shadow, t_max, -1, 0);
+            inspect_shadow(st, shadow, t_max, -1, 0);
             return t;
         }
-        trace_shadow(st, shadow, t_max, at.prim, at.t);
+        inspect_shadow(st, shadow, t_max, at.prim, at.t);
         const struct material *m = at.light < 0 ? &s->materials[at.material] : NULL;
         if (!m || m->kind != MAT_GLASS) {
             return vec3_splat(0);
@@ -116,14 +116,14 @@ light_sample_irradiance(
     real cos_light_area = area_light_cos(light, normal_area, vec3_neg(to_light)) / dist;
     *blocked = false;
     if (!(cos_surface > 0 && cos_light_area > 0)) {
-        trace_area_sample(st, light, y, vec3_splat(0));
+        inspect_area_sample(st, light, y, vec3_splat(0));
         return vec3_splat(0);
     }
     vec3 through = transmittance(w, h, y, st);
     *blocked = through.x < 1 || through.y < 1 || through.z < 1;
     vec3 l = vec3_scale(light->radiance, cos_surface * cos_light_area / dist2);
     vec3 e = vec3_mul(through, l);
-    trace_area_sample(st, light, y, e);
+    inspect_area_sample(st, light, y, e);
     return e;
 }
 
@@ -192,7 +192,7 @@ sphere_sample_irradiance(
     *blocked = through.x < 1 || through.y < 1 || through.z < 1;
     vec3 l = vec3_scale(light->radiance, cos_surface * 2 * PI * one_minus_cos_max);
     vec3 e = vec3_mul(through, l);
-    trace_light_sample(st, y, 0, 1 / (2 * PI * one_minus_cos_max), e);
+    inspect_light_sample(st, y, 0, 1 / (2 * PI * one_minus_cos_max), e);
     return e;
 }
 
@@ -350,17 +350,17 @@ light_irradiance(
     int probes = sampling->adaptive[0];
     vec3 sum = sum_light_samples(w, h, light, probes, rng, st, &blocked);
     if (blocked == probes) {
-        trace_adaptive(st, probes, blocked, 0);
+        inspect_adaptive(st, probes, blocked, 0);
         return vec3_splat(0);
     }
     vec3 exact;
     if (blocked == 0 && unoccluded_closed_form(h, light, &exact)) {
-        trace_adaptive(st, probes, blocked, 0);
+        inspect_adaptive(st, probes, blocked, 0);
         return exact;
     }
     st->extra[STAT_PENUMBRA]++;
     int more = sampling->adaptive[1];
-    trace_adaptive(st, probes, blocked, more);
+    inspect_adaptive(st, probes, blocked, more);
     sum = vec3_add(sum, sum_light_samples(w, h, light, more, rng, st, &blocked));
     return vec3_scale(sum, 1 / (real)(probes + more));
 }
@@ -403,7 +403,7 @@ direct_irradiance(
     vec3 e = vec3_splat(0);
     for (int i = 0; i < s->n_point_lights; i++) {
         const struct point_light *light = &s->point_lights[i];
-        trace_light(st, TRACE_POINT_LIGHT, i);
+        inspect_light(st, TRACE_POINT_LIGHT, i);
         vec3 irradiance = point_irradiance(h, light->position, light->intensity);
         if (!vec3_is_zero(irradiance)) {
             e = vec3_add(e, vec3_mul(irradiance, transmittance(w, h, light->position, st)));
@@ -411,12 +411,12 @@ direct_irradiance(
     }
     for (int i = 0; i < s->n_area_lights; i++) {
         const struct area_light *light = &s->area_lights[i];
-        trace_light(st, TRACE_AREA_LIGHT, i);
+        inspect_light(st, TRACE_AREA_LIGHT, i);
         e = vec3_add(e, area_light_irradiance(w, h, light, sampling, rng, st));
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
         const struct sphere_light *light = &s->sphere_lights[i];
-        trace_light(st, TRACE_SPHERE_LIGHT, i);
+        inspect_light(st, TRACE_SPHERE_LIGHT, i);
         e = vec3_add(e, sphere_light_irradiance(w, h, light, sampling, rng, st));
     }
     return e;

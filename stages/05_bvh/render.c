@@ -6,8 +6,8 @@
  */
 #include "render.h"
 
+#include "inspect.h"
 #include "optics.h"
-#include "trace.h"
 
 /* Parity (0 or 1) of the cell of a 1D checkerboard that x falls in;
  * fmod keeps it exact for coordinates too large for an integer. */
@@ -87,11 +87,11 @@ shade_glass(
     vec3 n = vec3_dot(r.d, h->n) < 0 ? h->n : h->ng;
     real eta = h->front_face ? 1 / m->ior : m->ior;
     real f = fresnel_dielectric(-vec3_dot(r.d, n), eta);
-    trace_specular(st, depth, f < 1 ? "reflect" : "total internal reflection", f, vec3_splat(f));
+    inspect_specular(st, depth, f < 1 ? "reflect" : "total internal reflection", f, vec3_splat(f));
     vec3 l = vec3_scale(trace_on(renderer, h, reflect(r.d, n), depth, rng, st), f);
     vec3 refracted;
     if (f < 1 && refract(r.d, n, eta, &refracted)) {
-        trace_specular(st, depth, "refract", f, vec3_splat(1 - f));
+        inspect_specular(st, depth, "refract", f, vec3_splat(1 - f));
         l = vec3_madd(l, trace_on(renderer, h, refracted, depth, rng, st), 1 - f);
     }
     return l;
@@ -111,7 +111,7 @@ shade(
     if (h->light >= 0) {
         /* An emitter (one-sided unless two_sided), black as a surface (SCENES.md). */
         vec3 emitted = light_emitted(s, h->light, h->front_face);
-        trace_emission(st, emitted, true);
+        inspect_emission(st, emitted, true);
         return emitted;
     }
     const struct material *m = &s->materials[h->material];
@@ -122,10 +122,10 @@ shade(
         vec3 e = direct_irradiance(&renderer->world, h, &renderer->shadow, rng, st);
         vec3 reflected = vec3_scale(e, INV_PI);
         l = vec3_mul(albedo, vec3_add(reflected, s->ambient));
-        trace_shade(st, albedo, e, s->ambient, l);
+        inspect_shade(st, albedo, e, s->ambient, l);
     }
     if (m->kind == MAT_MIRROR || m->kind == MAT_BLEND) {
-        trace_specular(st, depth, "mirror", NAN, m->reflectance);
+        inspect_specular(st, depth, "mirror", NAN, m->reflectance);
         vec3 mirrored = trace_on(renderer, h, reflect(r.d, h->n), depth, rng, st);
         l = vec3_add(l, vec3_mul(m->reflectance, mirrored));
     } else if (m->kind == MAT_GLASS) {
@@ -139,10 +139,10 @@ trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct
 {
     struct hit h;
     if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
-        trace_miss(st, depth, r, renderer->scene->background);
+        inspect_miss(st, depth, r, renderer->scene->background);
         return renderer->scene->background;
     }
-    trace_hit(st, depth, r, h.t, h.p, h.prim, h.material, h.ng, h.n, h.front_face);
+    inspect_hit(st, depth, r, &h);
     return shade(renderer, r, &h, depth, rng, st);
 }
 
@@ -154,8 +154,8 @@ render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
     real y = (real)py + (real)0.5;
     ray primary = camera_ray(&renderer->camera, x, y);
     st->rays_camera++;
-    trace_sample(st, 0, x, y, primary);
+    inspect_sample(st, 0, x, y, primary);
     vec3 l = trace(renderer, primary, 1, rng, st);
-    trace_sample_done(st, l);
+    inspect_sample_done(st, l);
     return l;
 }

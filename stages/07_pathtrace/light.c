@@ -5,8 +5,8 @@
  */
 #include "light.h"
 
+#include "inspect.h"
 #include "lowdisc.h"
-#include "trace.h"
 
 #include <stdlib.h>
 
@@ -34,13 +34,13 @@ sample_area_light(const struct area_light *light, real u, real v)
 }
 
 void
-trace_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st)
+inspect_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st)
 {
     struct hit blocker = {.prim = -1};
     if (!clear && !world_intersect(w, shadow, t_max, &blocker, st)) {
         blocker.prim = -1;
     }
-    trace_shadow(st, shadow, t_max, blocker.prim, blocker.t);
+    inspect_shadow(st, shadow, t_max, blocker.prim, blocker.t);
 }
 
 bool
@@ -51,8 +51,8 @@ visible(const struct world *w, const struct hit *h, vec3 to, struct stats *st)
     ray shadow = spawn_ray_to(h, to, &t_max);
     st->rays_shadow++;
     bool clear = !world_occluded(w, shadow, t_max, st);
-    if (tracing(st)) {
-        trace_shadow_ray(w, shadow, t_max, clear, st);
+    if (inspecting(st)) {
+        inspect_shadow_ray(w, shadow, t_max, clear, st);
     }
     return clear;
     /* END LAB */
@@ -95,7 +95,7 @@ shadow_ray_estimate(
     *blocked = through.x < 1 || through.y < 1 || through.z < 1;
     real pdf_bsdf = sampling->bsdf_pdf_cos * cos_surface;
     real weight = mis_power_heuristic((real)sampling->samples, pdf, 1, pdf_bsdf);
-    trace_mis(st, pdf, pdf_bsdf, weight);
+    inspect_mis(st, pdf, pdf_bsdf, weight);
     return vec3_mul(through, vec3_scale(radiance, cos_surface * weight / pdf));
 }
 
@@ -131,7 +131,7 @@ area_sample_irradiance(
     real cos_light_area = area_light_cos(light, normal_area, vec3_neg(to_light)) / dist;
     *blocked = false;
     if (!(cos_light_area > 0)) {
-        trace_picked_sample(
+        inspect_picked_sample(
             st,
             light,
             pick,
@@ -144,7 +144,7 @@ area_sample_irradiance(
     real pdf = pdf_solid_angle > 0 ? pdf_solid_angle : pick * dist2 / cos_light_area;
     real cos_surface = vec3_dot(h->n, to_light) / dist;
     vec3 e = shadow_ray_estimate(w, h, sampling, light->radiance, y, cos_surface, pdf, st, blocked);
-    trace_picked_sample(st, light, pick, y, pdf, pdf_solid_angle == 0, e);
+    inspect_picked_sample(st, light, pick, y, pdf, pdf_solid_angle == 0, e);
     return e;
 }
 
@@ -439,7 +439,7 @@ sphere_sample_irradiance(
         pdf,
         st,
         blocked);
-    trace_light_sample(st, y, 0, pdf, e);
+    inspect_light_sample(st, y, 0, pdf, e);
     return e;
 }
 
@@ -645,17 +645,17 @@ light_irradiance(
     int probes = sampling->adaptive[0];
     vec3 sum = sum_light_samples(w, h, sampling, light, probes, rng, st, &blocked);
     if (blocked == probes) {
-        trace_adaptive(st, probes, blocked, 0);
+        inspect_adaptive(st, probes, blocked, 0);
         return vec3_splat(0);
     }
     vec3 exact;
     if (blocked == 0 && unoccluded_closed_form(h, light, &exact)) {
-        trace_adaptive(st, probes, blocked, 0);
+        inspect_adaptive(st, probes, blocked, 0);
         return exact;
     }
     st->extra[STAT_PENUMBRA]++;
     int more = sampling->adaptive[1];
-    trace_adaptive(st, probes, blocked, more);
+    inspect_adaptive(st, probes, blocked, more);
     sum = vec3_add(sum, sum_light_samples(w, h, sampling, light, more, rng, st, &blocked));
     return vec3_scale(sum, 1 / (real)(probes + more));
 }
@@ -887,7 +887,7 @@ triangle_lights_irradiance(
         real pdf_area;
         int i = light_picker_sample(picker, w->scene, u0, u, v, &y, &pdf_area);
         const struct area_light *light = &w->scene->area_lights[i];
-        trace_light(st, TRACE_AREA_LIGHT, i);
+        inspect_light(st, TRACE_AREA_LIGHT, i);
         bool blocked;
         vec3 e = area_sample_irradiance(w, h, sampling, light, y, 0, picker->prob[i], st, &blocked);
         sum = vec3_add(sum, e);
@@ -908,7 +908,7 @@ direct_irradiance(
     vec3 e = vec3_splat(0);
     for (int i = 0; i < s->n_point_lights; i++) {
         const struct point_light *light = &s->point_lights[i];
-        trace_light(st, TRACE_POINT_LIGHT, i);
+        inspect_light(st, TRACE_POINT_LIGHT, i);
         vec3 irradiance = point_irradiance(h, light->position, light->intensity);
         if (!vec3_is_zero(irradiance)) {
             e = vec3_add(e, vec3_mul(irradiance, transmittance(w, h, light->position, st)));
@@ -921,13 +921,13 @@ direct_irradiance(
     for (int i = 0; i < s->n_area_lights; i++) {
         const struct area_light *light = &s->area_lights[i];
         if (!light->triangle) {
-            trace_light(st, TRACE_AREA_LIGHT, i);
+            inspect_light(st, TRACE_AREA_LIGHT, i);
             e = vec3_add(e, area_light_irradiance(w, h, light, sampling, rng, st));
         }
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
         const struct sphere_light *sphere = &s->sphere_lights[i];
-        trace_light(st, TRACE_SPHERE_LIGHT, i);
+        inspect_light(st, TRACE_SPHERE_LIGHT, i);
         e = vec3_add(e, sphere_light_irradiance(w, h, sphere, sampling, rng, st));
     }
     if (picker->n > 0) {

@@ -9,8 +9,8 @@
 #include "render.h"
 
 #include "bsdf.h"
+#include "inspect.h"
 #include "lowdisc.h"
-#include "trace.h"
 
 /* Parity (0 or 1) of the cell of a 1D checkerboard that x falls in;
  * fmod keeps it exact for coordinates too large for an integer. */
@@ -214,14 +214,14 @@ shade(
         vec3 le = path->pdf_bsdf > 0 ? emitted_mis(renderer, h, path, &pdf_light, &weight)
                                      : emitted(renderer, h, path);
         vec3 l = vec3_mul(path->beta, le);
-        trace_emission(st, l, path->specular);
-        trace_mis(st, pdf_light, path->pdf_bsdf, weight); /* only where MIS weighed it */
+        inspect_emission(st, l, path->specular);
+        inspect_mis(st, pdf_light, path->pdf_bsdf, weight); /* only where MIS weighed it */
         path->beta = vec3_splat(0);
         return l;
     }
     if (path->depth >= renderer->max_depth) {
         /* No ray may follow this vertex: not a shadow ray, not a bounce. */
-        trace_end(st, "max-depth: no ray may follow this vertex");
+        inspect_end(st, "max-depth: no ray may follow this vertex");
         path->beta = vec3_splat(0);
         return vec3_splat(0);
     }
@@ -230,17 +230,17 @@ shade(
     vec3 l = vec3_splat(0);
     if (!vec3_is_zero(albedo)) {
         l = vec3_mul(path->beta, direct_light(renderer, h, m, albedo, path, rng, st));
-        trace_nee(st, l);
+        inspect_nee(st, l);
     }
     struct bsdf_sample bs = {0};
     real u[3];
     bounce_numbers(renderer, m, path, rng, u);
     if (!sample_bsdf(m, albedo, h, r->d, u, &bs)) {
-        trace_end(st, "no bounce: nothing reflects here, or the direction went below the surface");
+        inspect_end(st, "no bounce: nothing reflects here, or the direction is below the surface");
         path->beta = vec3_splat(0);
         return l;
     }
-    trace_bounce(st, bs.lobe, bs.d, bs.pdf, path->beta, vec3_mul(path->beta, bs.weight));
+    inspect_bounce(st, bs.lobe, bs.d, bs.pdf, path->beta, vec3_mul(path->beta, bs.weight));
     path->beta = vec3_mul(path->beta, bs.weight);
     path->specular = bs.specular;
     path->pdf_bsdf = 0;
@@ -311,16 +311,16 @@ trace(
         struct hit h;
         if (!world_intersect(&renderer->world, r, REAL_MAX, &h, st)) {
             /* The background is a constant environment light. */
-            trace_miss(st, path.depth, r, vec3_mul(path.beta, renderer->scene->background));
+            inspect_miss(st, path.depth, r, vec3_mul(path.beta, renderer->scene->background));
             l = vec3_add(l, vec3_mul(path.beta, renderer->scene->background));
             break;
         }
-        trace_hit(st, path.depth, r, h.t, h.p, h.prim, h.material, h.ng, h.n, h.front_face);
+        inspect_hit(st, path.depth, r, &h);
         l = vec3_add(l, shade(renderer, &r, &h, &path, rng, st));
         if (renderer->rr) {
             real u = roulette_number(renderer, &path, rng);
             real q = russian_roulette(&path, renderer->rr_depth, renderer->rr_threshold, u);
-            trace_roulette(st, q, u, !vec3_is_zero(path.beta));
+            inspect_roulette(st, q, u, !vec3_is_zero(path.beta));
         }
         path.depth++;
     }
@@ -418,9 +418,9 @@ sum_samples(
         }
         ray primary = camera_ray(&renderer->camera, (real)px + dx, (real)py + dy);
         st->rays_camera++;
-        trace_sample(st, i, (real)px + dx, (real)py + dy, primary);
+        inspect_sample(st, i, (real)px + dx, (real)py + dy, primary);
         vec3 l = trace(renderer, primary, 1, id, rng, st);
-        trace_sample_done(st, l);
+        inspect_sample_done(st, l);
         *lum_min = fmin(*lum_min, luminance(l));
         *lum_max = fmax(*lum_max, luminance(l));
         sum = vec3_add(sum, l);

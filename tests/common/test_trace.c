@@ -14,7 +14,7 @@
  *     at the parent's depth; a trace without `specular`
  *     events (07's loop) is not indented by depth;
  *   - the recorder stops at its limit and says the trace is truncated;
- *   - no recorder, no cost: the trace_* calls with st->trace NULL do
+ *   - no recorder, no cost: the inspect_* calls with st->trace NULL do
  *     nothing.
  */
 #include <math.h>
@@ -26,6 +26,17 @@
 #include "driver.h"
 #include "scene.h"
 #include "trace.h"
+
+/* The fields of a stage's struct hit (geometry.h) that inspect_hit reads. */
+struct hit {
+    real t;
+    int prim;
+    vec3 p, ng, n;
+    bool front_face;
+    int material;
+};
+
+#include "inspect.h"
 
 static const char scene_text[] = "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\n"
                                  "image width 8 height 6\n"
@@ -69,8 +80,9 @@ recording_pixel(const void *ctx, int px, int py, int pass, struct rng *rng, stru
 {
     (void)ctx;
     ray r = {{0, 0, 5}, {0, 0, -1}};
-    trace_sample(st, pass, (real)px + (real)0.5, (real)py + (real)0.5, r);
-    trace_hit(st, 1, r, 4, (vec3){0, 0, 1}, 0, 0, (vec3){0, 0, 1}, (vec3){0, 0, 1}, true);
+    inspect_sample(st, pass, (real)px + (real)0.5, (real)py + (real)0.5, r);
+    struct hit h = {.t = 4, .p = {0, 0, 1}, .ng = {0, 0, 1}, .n = {0, 0, 1}, .front_face = true};
+    inspect_hit(st, 1, r, &h);
     real zero = 0;
     vec3 v = {rng_uniform(rng), (real)pass, (real)(px + py)};
     return pass == 2 ? vec3_splat(zero / zero) : v;
@@ -123,13 +135,14 @@ TEST(names_by_line)
     ray r = {{0, 0, 5}, {0, 0, -1}};
     vec3 n = {0, 0, 1};
     trace_pass_begin(t, 0);
-    trace_sample(&st, 0, 1.25, 2.75, r);
+    inspect_sample(&st, 0, 1.25, 2.75, r);
     /* Primitives: sphere 0, quad 1, triangle 2, area light 3. */
     for (int prim = 0; prim < 4; prim++) {
-        trace_hit(&st, 1 + prim, r, 1, n, prim, prim == 2 ? 1 : 0, n, n, prim != 1);
+        struct hit h = {1, prim, n, n, n, prim != 1, prim == 2 ? 1 : 0};
+        inspect_hit(&st, 1 + prim, r, &h);
     }
-    trace_light(&st, TRACE_POINT_LIGHT, 0);
-    trace_specular(&st, 1, "mirror", NAN, vec3_splat(0.5));
+    inspect_light(&st, TRACE_POINT_LIGHT, 0);
+    inspect_specular(&st, 1, "mirror", NAN, vec3_splat(0.5));
     trace_pass_end(t, vec3_splat(1));
     char *json = written(t, true);
     char *text = written(t, false);
@@ -165,10 +178,12 @@ TEST(offsets_are_measured_from_the_spawning_hit)
     struct stats st = {.trace = t};
     vec3 n = {0, 1, 0};
     trace_pass_begin(t, 0);
-    trace_sample(&st, 0, 0.5, 0.5, (ray){{0, 0, 5}, {0, 0, -1}});
-    trace_hit(&st, 1, (ray){{0, 0, 5}, {0, 0, -1}}, 5, (vec3){0, 0, 0}, 1, 0, n, n, true);
-    trace_shadow(&st, (ray){{0, 0.25, 0}, {0, 1, 0}}, 2, -1, 0);
-    trace_hit(&st, 2, (ray){{0, 0.5, 0}, {0, 1, 0}}, 1, (vec3){0, 1.5, 0}, 0, 0, n, n, true);
+    inspect_sample(&st, 0, 0.5, 0.5, (ray){{0, 0, 5}, {0, 0, -1}});
+    struct hit floor = {.t = 5, .prim = 1, .p = {0, 0, 0}, .ng = n, .n = n, .front_face = true};
+    inspect_hit(&st, 1, (ray){{0, 0, 5}, {0, 0, -1}}, &floor);
+    inspect_shadow(&st, (ray){{0, 0.25, 0}, {0, 1, 0}}, 2, -1, 0);
+    struct hit above = {.t = 1, .prim = 0, .p = {0, 1.5, 0}, .ng = n, .n = n, .front_face = true};
+    inspect_hit(&st, 2, (ray){{0, 0.5, 0}, {0, 1, 0}}, &above);
     trace_pass_end(t, vec3_splat(0));
     char *json = written(t, true);
     CHECK(json && strstr(json, "\"t_max\": 2") && strstr(json, "\"offset\": 0.25"));
@@ -209,19 +224,19 @@ nested_text(const struct scene *s, bool recursive)
     vec3 n = {0, 1, 0};
     ray r = {{0, 0, 5}, {0, 0, -1}};
     trace_pass_begin(t, 0);
-    trace_sample(&st, 0, 0.5, 0.5, r);
+    inspect_sample(&st, 0, 0.5, 0.5, r);
     int depths[] = {1, 2, 3, 2};
     for (int i = 0; i < 4; i++) {
-        trace_hit(&st, depths[i], r, 1, (vec3){0, 0, 0}, 0, 0, n, n, true);
+        inspect_hit(&st, depths[i], r, &(struct hit){.t = 1, .ng = n, .n = n, .front_face = true});
         if (recursive) {
-            trace_specular(&st, depths[i], "reflect", 0.04, vec3_splat(0.04));
+            inspect_specular(&st, depths[i], "reflect", 0.04, vec3_splat(0.04));
         } else {
-            trace_bounce(&st, "diffuse", n, 0.3, vec3_splat(1), vec3_splat(0.5));
+            inspect_bounce(&st, "diffuse", n, 0.3, vec3_splat(1), vec3_splat(0.5));
         }
     }
     if (recursive) {
         /* Back at the first hit, after its reflected branch: refraction. */
-        trace_specular(&st, 1, "refract", 0.04, vec3_splat(0.96));
+        inspect_specular(&st, 1, "refract", 0.04, vec3_splat(0.96));
     }
     trace_pass_end(t, vec3_splat(0));
     char *text = written(t, false);
@@ -275,9 +290,9 @@ TEST(truncated_at_the_limit)
     struct trace *t = trace_new(&s, 0, 0);
     struct stats st = {.trace = t};
     trace_pass_begin(t, 0);
-    trace_sample(&st, 0, 0.5, 0.5, (ray){{0, 0, 5}, {0, 0, -1}});
+    inspect_sample(&st, 0, 0.5, 0.5, (ray){{0, 0, 5}, {0, 0, -1}});
     for (int i = 0; i < 200000; i++) {
-        trace_end(&st, "again");
+        inspect_end(&st, "again");
     }
     trace_pass_end(t, vec3_splat(0));
     char *json = written(t, true);
@@ -294,10 +309,10 @@ TEST(no_recorder_no_events)
 {
     struct stats st = {0};
     ray r = {{0, 0, 0}, {0, 0, 1}};
-    CHECK(!tracing(&st));
-    trace_sample(&st, 0, 0, 0, r);
-    trace_miss(&st, 1, r, vec3_splat(1));
-    trace_end(&st, "nothing");
+    CHECK(!inspecting(&st));
+    inspect_sample(&st, 0, 0, 0, r);
+    inspect_miss(&st, 1, r, vec3_splat(1));
+    inspect_end(&st, "nothing");
     CHECK(st.trace == NULL && st.rays_camera == 0);
 }
 
