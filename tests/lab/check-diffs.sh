@@ -24,18 +24,9 @@ LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 . "$LAB_DIR/lablib.sh"
 
 root=$(cd "$LAB_DIR/../.." && pwd)
-while [ $# -gt 0 ]; do
-    case $1 in
-        -h | --help) show_help "$0"; exit 0 ;;
-        --root)
-            [ $# -ge 2 ] || usage_error "--root needs a directory"
-            root=$(abs_dir "$2")
-            shift
-            ;;
-        *) usage_error "unexpected argument: $1" ;;
-    esac
-    shift
-done
+parse_options '--root root=DIR' "$@"
+shift "$po_used"
+[ $# -eq 0 ] || usage_error "unexpected argument: $1"
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/check-diffs.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT

@@ -55,28 +55,9 @@ cache=1
 out=
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
 limit=300
-while [ $# -gt 0 ]; do
-    case $1 in
-        -h | --help) show_help "$0"; exit 0 ;;
-        --quick) mode=quick ;;
-        --full) mode=full ;;
-        --no-cache) cache=0 ;;
-        --out | --jobs | --timeout | --root)
-            [ $# -ge 2 ] || usage_error "$1 needs a value"
-            case $1 in
-                --out) out=$2 ;;
-                --jobs) jobs=$2 ;;
-                --timeout) limit=$2 ;;
-                --root) root=$(abs_dir "$2") ;;
-            esac
-            shift
-            ;;
-        --) shift; break ;;
-        -*) usage_error "unknown option: $1" ;;
-        *) break ;;
-    esac
-    shift
-done
+parse_options '--quick mode=quick --full mode=full --no-cache cache=0 --out out=VALUE --jobs jobs=VALUE
+    --timeout limit=VALUE --root root=DIR' "$@"
+shift "$po_used"
 case $jobs in '' | *[!0-9]*) usage_error "--jobs needs a number, got '$jobs'" ;; esac
 case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
 [ -n "$out" ] || out=$root/build/labs

@@ -55,29 +55,9 @@ controls=
 save_controls=
 limit=300
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
-while [ $# -gt 0 ]; do
-    case $1 in
-        -h | --help) show_help "$0"; exit 0 ;;
-        --pristine) pristine=1 ;;
-        --no-pages) no_pages=1 ;;
-        --timeout | --jobs | --root | --pages | --controls | --save-controls)
-            [ $# -ge 2 ] || usage_error "$1 needs a value"
-            case $1 in
-                --pages) pages=$2 ;;
-                --controls) controls=$2 ;;
-                --save-controls) save_controls=$2 ;;
-                --timeout) limit=$2 ;;
-                --jobs) jobs=$2 ;;
-                --root) root=$(abs_dir "$2") ;;
-            esac
-            shift
-            ;;
-        --) shift; break ;;
-        -*) usage_error "unknown option: $1" ;;
-        *) break ;;
-    esac
-    shift
-done
+parse_options '--pristine pristine=1 --no-pages no_pages=1 --pages pages=VALUE --controls controls=VALUE
+    --save-controls save_controls=VALUE --timeout limit=VALUE --jobs jobs=VALUE --root root=DIR' "$@"
+shift "$po_used"
 [ $# -eq 1 ] || usage_error "expected one handout directory, got $# argument(s)"
 case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
 case $jobs in '' | *[!0-9]*) usage_error "--jobs needs a number, got '$jobs'" ;; esac

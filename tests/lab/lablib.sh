@@ -23,6 +23,49 @@ show_help() {
     awk 'NR == 1 { next } /^#/ { sub(/^# ?/, ""); print; next } { exit }' "$1"
 }
 
+# parse_options SPEC ARG... - the options of a lab script's command line.
+# SPEC pairs each option with what it does, as words: `--force force=1`
+# sets force to 1 (any word but VALUE and DIR), `--jobs jobs=VALUE` sets
+# jobs to the argument that follows, `--root root=DIR` sets root to that
+# argument, a directory, made absolute.  -h and --help print the script's
+# help and exit 0; an option SPEC does not name, or one without its value,
+# is a usage error (exit 2).  Parsing stops at the first argument that is
+# not an option, or after `--`; po_used is then the number of arguments
+# read, for the caller's `shift "$po_used"`.
+parse_options() {
+    po_spec=$1
+    shift
+    po_used=0
+    while [ $# -gt 0 ]; do
+        case $1 in
+            -h | --help) show_help "$0"; exit 0 ;;
+            --) po_used=$((po_used + 1)); return 0 ;;
+            -*) ;;
+            *) return 0 ;;
+        esac
+        po_action=
+        po_key=
+        for po_w in $po_spec; do
+            if [ -z "$po_key" ]; then
+                po_key=$po_w
+                continue
+            fi
+            [ "$po_key" = "$1" ] && po_action=$po_w
+            po_key=
+        done
+        [ -n "$po_action" ] || usage_error "unknown option: $1"
+        po_n=2
+        case ${po_action#*=} in
+            VALUE) [ $# -ge 2 ] || usage_error "$1 needs a value"; po_value=$2 ;;
+            DIR) [ $# -ge 2 ] || usage_error "$1 needs a directory"; po_value=$(abs_dir "$2") || exit 1 ;;
+            *) po_value=${po_action#*=}; po_n=1 ;;
+        esac
+        eval "${po_action%%=*}=\$po_value"
+        shift "$po_n"
+        po_used=$((po_used + po_n))
+    done
+}
+
 # abs_dir DIR - DIR as an absolute path (DIR must exist).
 abs_dir() {
     (cd "$1" 2>/dev/null && pwd) || die "no such directory: $1"

@@ -29,21 +29,8 @@ LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 
 root=$(cd "$LAB_DIR/../.." && pwd)
 force=0
-while [ $# -gt 0 ]; do
-    case $1 in
-        -h | --help) show_help "$0"; exit 0 ;;
-        --force) force=1 ;;
-        --root)
-            [ $# -ge 2 ] || usage_error "--root needs a directory"
-            root=$(abs_dir "$2")
-            shift
-            ;;
-        --) shift; break ;;
-        -*) usage_error "unknown option: $1" ;;
-        *) break ;;
-    esac
-    shift
-done
+parse_options '--force force=1 --root root=DIR' "$@"
+shift "$po_used"
 [ $# -eq 1 ] || usage_error "expected OUT, got $# argument(s)"
 [ -n "$1" ] || usage_error "OUT is empty"
 out=$1

@@ -29,23 +29,9 @@ LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$LAB_DIR/../.." && pwd)
 docs=
 quiet=0
-while [ $# -gt 0 ]; do
-    case $1 in
-        -h | --help) show_help "$0"; exit 0 ;;
-        --quiet) quiet=1 ;;
-        --docs | --root)
-            [ $# -ge 2 ] || usage_error "$1 needs a directory"
-            case $1 in
-                --docs) docs=$2 ;;
-                --root) root=$(abs_dir "$2") ;;
-            esac
-            shift
-            ;;
-        -*) usage_error "unknown option: $1" ;;
-        *) usage_error "unexpected argument: $1" ;;
-    esac
-    shift
-done
+parse_options '--quiet quiet=1 --docs docs=VALUE --root root=DIR' "$@"
+shift "$po_used"
+[ $# -eq 0 ] || usage_error "unexpected argument: $1"
 [ -n "$docs" ] || docs=$root/docs
 command -v git >/dev/null 2>&1 || die "git is needed (for git diff --no-index)"
 

@@ -45,25 +45,9 @@ force=0
 discard=0
 strict=0
 quiet=0
-while [ $# -gt 0 ]; do
-    case $1 in
-        -h | --help) show_help "$0"; exit 0 ;;
-        --solution) solution=1 ;;
-        --force) force=1 ;;
-        --discard-changes) discard=1 ;;
-        --strict) strict=1 ;;
-        --quiet) quiet=1 ;;
-        --root)
-            [ $# -ge 2 ] || usage_error "--root needs a directory"
-            root=$(abs_dir "$2")
-            shift
-            ;;
-        --) shift; break ;;
-        -*) usage_error "unknown option: $1" ;;
-        *) break ;;
-    esac
-    shift
-done
+parse_options '--solution solution=1 --force force=1 --discard-changes discard=1 --strict strict=1
+    --quiet quiet=1 --root root=DIR' "$@"
+shift "$po_used"
 [ $# -eq 2 ] || usage_error "expected STAGE and OUT, got $# argument(s)"
 [ -n "$2" ] || usage_error "OUT is empty"
 

@@ -9,7 +9,7 @@
 # miniature project written into a temporary directory (nothing is
 # compiled: check-labs.sh and grade.sh build real handouts, and run in
 # make test and make check-labs); grade-pages.sh on the project's own
-# build.  Prints one line per test and the closing
+# build; lablib.sh's parse_options and grading functions.  Prints one line per test and the closing
 # line "N passed, N failed, N skipped".  --keep keeps the temporary
 # directory and prints its name.
 # Exit status: 0 all passed, 1 a test failed, 2 usage.
@@ -608,6 +608,45 @@ test_help() {
     done
 }
 
+# --- options: parse_options (lablib.sh) ------------------------------------
+# po SPEC ARG... - what the variables and the rest hold after parsing, as
+# one line, or the usage error and its exit status.
+po() {
+    (
+        po_spec=$1
+        shift
+        flag=0 value=- dir=-
+        parse_options "$po_spec" "$@" 2>&1
+        shift "$po_used"
+        echo "flag=$flag value=$value dir=$dir rest=$*"
+    ) 2>&1 || echo "exit $?"
+}
+test_options() {
+    op_spec='--flag flag=yes --value value=VALUE --dir dir=DIR'
+    mkdir -p "$T/opt dir"
+    op_dir=$(cd "$T/opt dir" && pwd)
+    # Each case: its name|the expected lines|the arguments.
+    for op_case in \
+        "all-kinds|flag=yes value=a b dir=$op_dir rest=x --flag|--flag --value 'a b' --dir '$T/opt dir' x --flag" \
+        "double-dash|flag=0 value=--flag dir=- rest=--flag|--value --flag -- --flag" \
+        "none|flag=0 value=- dir=- rest=|" \
+        "unknown|$PROG: unknown option: --bogus|Try '$PROG --help'.|exit 2|--flag --bogus" \
+        "no-value|$PROG: --value needs a value|Try '$PROG --help'.|exit 2|--value" \
+        "no-dir|$PROG: --dir needs a directory|Try '$PROG --help'.|exit 2|--dir" \
+        "missing-dir|$PROG: error: no such directory: $T/none|exit 1|--dir '$T/none'"; do
+        op_name=${op_case%%|*}
+        op_want=${op_case#*|}
+        op_want=${op_want%|*}
+        eval "set -- ${op_case##*|}"
+        op_got=$(po "$op_spec" "$@" | tr '\n' '|')
+        if [ "$op_got" = "$op_want|" ]; then
+            ok "options/$op_name"
+        else
+            fail "options/$op_name" "got:  $op_got" "want: $op_want|"
+        fi
+    done
+}
+
 # --- grading: test_statuses (lablib.sh) and grade.awk ----------------------
 # A TEST() that passes in the untouched handout is a control: listed, not
 # scored (a handout with only stubs must score 0%, the solution 100%).
@@ -705,6 +744,7 @@ if command -v git >/dev/null 2>&1; then
     test_diffs
     test_branches
 fi
+test_options
 test_grade_score
 test_controls
 test_grade_pages
