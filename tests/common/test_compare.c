@@ -449,27 +449,77 @@ TEST(identical_renders_are_called_out)
     CHECK(strstr(out, "the renders are identical") != NULL);
 }
 
-TEST(nan_pixels_fail)
+/* A NaN or infinite pixel in any input, the reference too, is bad input:
+ * exit 2, naming the file and the pixel (to replay it). */
+TEST(nan_or_infinite_pixels_are_refused_naming_the_file_and_the_pixel)
 {
-    struct image ref = {0}, a = {0};
+    struct image ref = {0}, a = {0}, b = {0};
     char out[CAP];
     make_reference(&ref);
     make_render(&ref, 3, 0, 0, 1, &a);
+    make_render(&ref, 4, 0, 0, 1, &b);
     image_pixel(&a, 40, 20)[1] = NAN;
-    CHECK(write_image(&ref, "ref.pfm") && write_image(&a, "a.pfm"));
-    const char *const alone[] = {TMP("a.pfm"), TMP("ref.pfm"), NULL};
-    CHECK_MSG(compare(alone, out) == 1 && strstr(out, "NaN"), "%s", out);
-    image_free(&a);
-    make_render(&ref, 4, 0, 0, 1, &a);
-    CHECK(write_image(&a, "b.pfm"));
+    image_pixel(&b, 7, 30)[2] = INFINITY;
+    CHECK(write_image(&ref, "ref.pfm") && write_image(&a, "nan.pfm") && write_image(&b, "inf.pfm"));
+    image_pixel(&ref, 70, 0)[0] = NAN;
+    CHECK(write_image(&ref, "nanref.pfm"));
+    image_pixel(&ref, 70, 0)[0] = 0.5f;
     image_free(&a);
     make_render(&ref, 5, 0, 0, 1, &a);
-    image_pixel(&a, 40, 20)[1] = NAN;
     CHECK(write_image(&a, "a.pfm"));
-    const char *const pair[] = {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), NULL};
-    CHECK_MSG(compare(pair, out) == 1 && strstr(out, "x 32-47, y 16-31 holds NaN"), "%s", out);
+    const char *const alone[] = {TMP("nan.pfm"), TMP("ref.pfm"), NULL};
+    const char *const pair[] = {TMP("a.pfm"), TMP("inf.pfm"), TMP("ref.pfm"), NULL};
+    const char *const reference[] = {TMP("a.pfm"), TMP("nanref.pfm"), NULL};
+    const char *const *cases[] = {alone, pair, reference};
+    const char *const files[] = {"nan.pfm: error", "inf.pfm: error", "nanref.pfm: error"};
+    const char *const pixels[] = {
+        "pixel 40,20 is NaN in channel G",
+        "pixel 7,30 is infinite in channel B",
+        "pixel 70,0 is NaN in channel R"};
+    for (int i = 0; i < 3; i++) {
+        int status = compare(cases[i], out);
+        CHECK_MSG(
+            status == 2 && strstr(out, files[i]) && strstr(out, pixels[i]) && !strstr(out, "nan%"),
+            "case %d: exit %d: %s",
+            i,
+            status,
+            out);
+    }
     image_free(&ref);
     image_free(&a);
+    image_free(&b);
+}
+
+/* Percentages and standard errors as plain numbers (no 1e+02%), channels
+ * by letter (the map's blue means darker, not a channel), and the hint
+ * about rare bright paths only beside a darker block. */
+TEST(verdict_lines_are_plain_words_and_numbers)
+{
+    char out[CAP];
+    const char *const args[] = {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), NULL};
+    CHECK(write_set(81, 82, 1, 1, 15)); /* 1400% brighter */
+    int status = compare(args, out);
+    const char *line = strstr(out, "y 16-31 is ");
+    int percent = 0, end = 0;
+    CHECK_MSG(
+        line
+            && sscanf(line, "y 16-31 is %d%% brighter than the reference (channel %n", &percent, &end)
+                   == 1
+            && end > 0 && percent > 1300 && percent < 1500,
+        "%s",
+        out);
+    CHECK_MSG(
+        status == 1
+            && strstr(out, " standard errors") && !strstr(out, "e+") && !strstr(out, "(blue)")
+            && !strstr(out, "(red)") && !strstr(out, "(green)") && !strstr(out, "hint"),
+        "%s",
+        out);
+    CHECK(write_set(83, 84, 1, 1, 0.5)); /* 50% darker */
+    status = compare(args, out);
+    CHECK_MSG(
+        status == 1 && strstr(out, "is 50% darker") && strstr(out, "hint       to tell a bias"),
+        "%s",
+        out);
 }
 
 TEST(bad_input_exits_2)
@@ -706,10 +756,19 @@ TEST(regions_without_noise_hold_each_region_to_the_limit)
         TMP("ref.pfm"),
         NULL};
     int status = compare(args, out);
-    CHECK_MSG(status == 1 && strstr(out, "regions    1 of 3 biased"), "%s", out);
+    CHECK_MSG(status == 1 && strstr(out, "regions    1 of 3 over the limit"), "%s", out);
     const char *umbra = strstr(out, "\n  umbra");
     CHECK_MSG(
         umbra && strstr(umbra, "over the limit") && strstr(out, "under the limit"),
+        "%s",
+        out);
+    /* Without a limit nothing is judged: no limit named, nothing biased. */
+    const char *const unlimited[] =
+        {"--regions", TMP("labels.pfm"), TMP("a.pfm"), TMP("ref.pfm"), NULL};
+    status = compare(unlimited, out);
+    CHECK_MSG(
+        status == 0 && strstr(out, "regions    3, by") && strstr(out, "noise not told from bias")
+            && !strstr(out, "limit") && !strstr(out, "biased"),
         "%s",
         out);
 }
@@ -733,6 +792,52 @@ TEST(regions_refuse_a_bad_label_image)
     CHECK_MSG(strstr(out, "8x8") != NULL, "%s", out);
 }
 
+/* --map and --html never overwrite an input or each other, however they
+ * are spelt (file identity, as render checks its outputs): exit 2 and the
+ * input untouched. */
+TEST(outputs_that_are_inputs_or_each_other_are_refused)
+{
+    char out[CAP];
+    CHECK(write_region_set(71, 72, 0, 1));
+    size_t before = 0, after = 0;
+    char *ref_bytes = test_read_file(TMP("ref.pfm"), &before);
+    char dotted[4200];
+    snprintf(dotted, sizeof dotted, "%s/./map.png", test_tmp_path(""));
+    const char *const map_ref[] =
+        {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), "--map", TMP("ref.pfm"), NULL};
+    const char *const html_render[] =
+        {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), "--html", TMP("b.pfm"), NULL};
+    const char *const both[] =
+        {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), "--map", TMP("map.png"), "--html", dotted, NULL};
+    const char *const variance[] =
+        {TMP("a.pfm"), "--variance", TMP("b.pfm"), TMP("ref.pfm"), "--map", TMP("b.pfm"), NULL};
+    const char *const regions[] = {
+        "--regions",
+        TMP("labels.pfm"),
+        TMP("a.pfm"),
+        TMP("b.pfm"),
+        TMP("ref.pfm"),
+        "--html",
+        TMP("labels.pfm"),
+        NULL};
+    const char *const *cases[] = {map_ref, html_render, both, variance, regions};
+    const char *const said[] = {
+        "is the reference",
+        "is the render",
+        "are the same file",
+        "is --variance",
+        "is --regions"};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        int status = compare(cases[i], out);
+        CHECK_MSG(status == 2 && strstr(out, said[i]), "case %zu: exit %d: %s", i, status, out);
+    }
+    char *now = test_read_file(TMP("ref.pfm"), &after);
+    CHECK(ref_bytes && now && before == after && memcmp(ref_bytes, now, before) == 0);
+    CHECK(!test_file_exists(TMP("map.png")));
+    free(ref_bytes);
+    free(now);
+}
+
 TEST_MAIN(
     TEST_ENTRY(png_reader_reads_back_what_the_writer_wrote),
     TEST_ENTRY(png_reader_reads_other_encoders_files),
@@ -745,7 +850,9 @@ TEST_MAIN(
     TEST_ENTRY(one_render_alone_is_compared_but_not_tested),
     TEST_ENTRY(mask_smooth_leaves_edges_out),
     TEST_ENTRY(identical_renders_are_called_out),
-    TEST_ENTRY(nan_pixels_fail),
+    TEST_ENTRY(nan_or_infinite_pixels_are_refused_naming_the_file_and_the_pixel),
+    TEST_ENTRY(outputs_that_are_inputs_or_each_other_are_refused),
+    TEST_ENTRY(verdict_lines_are_plain_words_and_numbers),
     TEST_ENTRY(bad_input_exits_2),
     TEST_ENTRY(error_map_shows_sign_outlines_failing_blocks_and_has_a_legend),
     TEST_ENTRY(report_page_is_one_self_contained_file),

@@ -10,6 +10,9 @@
  * magenta (the embedded images decoded and shown), the error map's red,
  * the red verdict box; side by side on the desktop and one above the other
  * on the phone; and the render over the reference, cut by the slider.
+ * The page's script is driven as a user would: the slider moved (its
+ * input event) moves the cut, and the flip button shows one image whole,
+ * then the other.
  *
  * Chromium: browser.h; skipped with a message when there is none.
  */
@@ -248,6 +251,106 @@ TEST(report_page_in_chromium_on_a_phone)
     image_free(&shot);
 }
 
+/* The page with `action` (script) run after the page's own script, as a
+ * user's drag or click would: its screenshot at the desktop's size. */
+static bool
+page_after(const char *chromium, const char *name, const char *action, struct image *shot)
+{
+    char *html = test_read_file(write_page(), NULL);
+    const char *end = html ? strstr(html, "</body>") : NULL;
+    CHECK(end != NULL);
+    if (!end) {
+        free(html);
+        return false;
+    }
+    size_t cap = strlen(html) + strlen(action) + 64;
+    char *page = malloc(cap), path[64], png[64], log[CAP];
+    snprintf(page, cap, "%.*s<script>%s</script>\n%s", (int)(end - html), html, action, end);
+    snprintf(path, sizeof path, "%s.html", name);
+    snprintf(png, sizeof png, "%s.png", name);
+    bool ok = test_write_file(test_tmp_path(path), page);
+    ok = ok
+         && browser_screenshot(
+             chromium,
+             test_tmp_path(path),
+             1200,
+             900,
+             test_tmp_path(png),
+             shot,
+             log,
+             sizeof log);
+    CHECK_MSG(ok, "%s", log);
+    free(page);
+    free(html);
+    return ok;
+}
+
+/* The share of the render (green) among the render and the reference
+ * (magenta) along the bottom row, which crosses the render over the
+ * reference; -1 when neither is there. */
+static double
+render_share(const struct image *shot, const char *what)
+{
+    long green = 0, magenta = 0;
+    int y = shot->height - 10;
+    for (int x = 0; x < shot->width; x++) {
+        enum colour_class k = classify(image_pixel(shot, x, y));
+        green += k == GREEN;
+        magenta += k == MAGENTA;
+    }
+    double share = green + magenta ? (double)green / (double)(green + magenta) : -1;
+    printf(
+        "%s: along row %d, %ld render and %ld reference pixels (%.2f)\n",
+        what,
+        y,
+        green,
+        magenta,
+        share);
+    return share;
+}
+
+/* The slider at 20: the render's edge moves to a fifth of the width (it
+ * starts at half). */
+TEST(report_page_slider_moves_the_edge)
+{
+    const char *chromium = browser_path();
+    if (!chromium) {
+        SKIP(BROWSER_MISSING);
+    }
+    struct image shot = {0};
+    const char drag[] =
+        "var s=document.getElementById('slide');s.value=20;s.dispatchEvent(new Event('input'));";
+    if (page_after(chromium, "slid", drag, &shot)) {
+        double share = render_share(&shot, "slider at 20");
+        CHECK(share > 0.15 && share < 0.25);
+    }
+    image_free(&shot);
+}
+
+/* flip shows the render whole, and again the reference whole. */
+TEST(report_page_flip_toggles)
+{
+    const char *chromium = browser_path();
+    if (!chromium) {
+        SKIP(BROWSER_MISSING);
+    }
+    const char once[] = "document.getElementById('flip').click();";
+    const char twice[] =
+        "document.getElementById('flip').click();document.getElementById('flip').click();";
+    struct image shot = {0};
+    if (page_after(chromium, "flip1", once, &shot)) {
+        CHECK(render_share(&shot, "flipped once") > 0.99);
+    }
+    image_free(&shot);
+    if (page_after(chromium, "flip2", twice, &shot)) {
+        double share = render_share(&shot, "flipped twice");
+        CHECK(share >= 0 && share < 0.01);
+    }
+    image_free(&shot);
+}
+
 TEST_MAIN(
     TEST_ENTRY(report_page_in_chromium_on_a_desktop),
-    TEST_ENTRY(report_page_in_chromium_on_a_phone))
+    TEST_ENTRY(report_page_in_chromium_on_a_phone),
+    TEST_ENTRY(report_page_slider_moves_the_edge),
+    TEST_ENTRY(report_page_flip_toggles))

@@ -51,6 +51,21 @@ trap 'rm -rf "$work"' EXIT
 trap 'exit 1' HUP INT TERM
 
 failed=0
+# The handout may be grade.sh's temporary copy, gone when the grade is read:
+# its files are named as the student's handout names them.
+handout_paths() {
+    awk -v refs="$refs/" -v work="$work/" '
+        function replace(s, from, to,    i, out) {
+            out = ""
+            while ((i = index(s, from)) > 0) {
+                out = out substr(s, 1, i - 1) to
+                s = substr(s, i + length(from))
+            }
+            return out s
+        }
+        { print replace(replace($0, refs, "tests/reference/"), work, "") }'
+}
+
 # page NAME SCENE RENDERS "RENDER OPTIONS" [COMPARE OPTIONS...]
 page() {
     pg_name=$1
@@ -80,14 +95,14 @@ page() {
     "$compare" -q --title "lab $nn: $pg_name" --html "$out/$pg_name.html" $pg_regions "$@" $pg_inputs \
         "$refs/$pg_name.pfm" >"$work/verdict" 2>&1 || pg_status=$?
     if [ "$pg_status" -ge 2 ]; then
-        echo "    $pg_name: compare failed: $(cat "$work/verdict")"
+        echo "    $pg_name: compare failed: $(handout_paths <"$work/verdict")"
         failed=1
     else
         echo "    $pg_name: $(head -n 1 "$work/verdict")"
         # The regions' lines; a pixel's replay uses the first render's options.
-        sed -e '1d' -e 's/^regions    /regions: /' \
+        handout_paths <"$work/verdict" | sed -e '1d' -e 's/^regions    /regions: /' \
             -e "s|--trace - SCENE|--trace - -W 256 -H 256 $pg_options --seed 1 scenes/$pg_base.scene|" \
-            -e 's/^/        /' "$work/verdict"
+            -e 's/^/        /'
         echo "        $out/$pg_name.html"
     fi
 }

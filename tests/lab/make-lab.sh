@@ -222,10 +222,11 @@ write_labmd() {
     rm -f "$tmp/.assets" "$tmp/.section"
 }
 
-# The list of a handout's files with their checksums (build/ and the list
-# itself left out), sorted: "CRC SIZE ./path" lines.
+# The list of a handout's files with their checksums (build/, grade/ - make
+# grade's report pages, not the student's work - and the list itself left
+# out), sorted: "CRC SIZE ./path" lines.
 file_list() {
-    (cd "$1" && find . -path ./build -prune -o -type f ! -name "$MANIFEST" -print |
+    (cd "$1" && find . \( -path ./build -o -path ./grade \) -prune -o -type f ! -name "$MANIFEST" -print |
         while IFS= read -r fl_f; do cksum "$fl_f"; done) | LC_ALL=C sort
 }
 

@@ -441,6 +441,10 @@ EOF
         fail make-lab/force-moves-aside "$(cat "$T/force.out")"
     fi
     check make-lab/unchanged-again "$LAB_DIR/make-lab.sh" --quiet --root "$M" 02 "$H"
+    # make grade's report pages (grade/*.html) are not the student's edits.
+    mkdir -p "$H/grade"
+    printf '<!DOCTYPE html>\n' >"$H/grade/lab.html"
+    check make-lab/grade-pages-are-not-edits "$LAB_DIR/make-lab.sh" --quiet --root "$M" 02 "$H"
     check make-lab/solution "$LAB_DIR/make-lab.sh" --solution --quiet --root "$M" 02 "$T/solution"
     if grep -q six_times "$T/solution/stages/02_b/main.c"; then ok make-lab/solution-kept; else fail make-lab/solution-kept; fi
     # Errors: exit 1 with a message; usage: exit 2.
@@ -545,8 +549,12 @@ test_grade_pages() {
         fi
         gp_pages=$(ls "$T/pages/$gp_stage"/*.html 2>/dev/null | wc -l)
         gp_images=$(cat "$T/pages/$gp_stage"/*.html 2>/dev/null | grep -o 'src="data:image/png;base64,' | wc -l)
+        # Its lines name the handout's files as the handout names them
+        # (grade.sh grades a temporary copy, gone when the grade is read).
         if [ "$gp_pages" -eq "$gp_want" ] && [ "$gp_images" -eq $((5 * gp_want)) ] &&
-            [ "$(grep -c "$gp_verdict" "$T/out")" -eq "$gp_want" ]; then
+            [ "$(grep -c "$gp_verdict" "$T/out")" -eq "$gp_want" ] &&
+            grep -q "feature pass tests/reference/" "$T/out" &&
+            ! grep -q -e "$root/tests/reference" -e "grade-pages\." "$T/out"; then
             ok "grade-pages/$gp_stage"
         else
             fail "grade-pages/$gp_stage" "$gp_pages pages, $gp_images images" "$(cat "$T/out")"

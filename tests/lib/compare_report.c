@@ -85,15 +85,16 @@ put_image(
 {
     fprintf(
         f,
-        "<img%s%s%s%s%s alt=\"%s\" src=\"data:image/png;base64,",
+        "<img%s%s%s%s%s%s alt=\"%s\" src=\"data:image/png;base64,",
         cls ? " class=\"" : "",
         cls ? cls : "",
         cls ? "\"" : "",
         id ? " id=\"" : "",
         id ? id : "",
+        id ? "\"" : "",
         alt);
     write_base64(f, png, n);
-    fputs(id ? "\">" : "\">", f);
+    fputs("\">", f);
 }
 
 /* The block test takes each block's mean as normal.  A few bright paths
@@ -106,6 +107,19 @@ const char compare_bias_hint[] =
     "to tell a bias from rare bright paths (caustics, fireflies) that these samples missed, render "
     "again with 4 times the spp: a bias keeps its size and its standard errors double; a chance "
     "darkening fades";
+
+bool
+compare_bias_hint_applies(const struct comparison *c)
+{
+    for (int i = 0; i < c->n_failing; i++) {
+        const struct metrics_block *b = &c->blocks.blocks[c->failing[i]];
+        int ch = compare_block_channel(b);
+        if (b->mean[ch] < b->ref_mean[ch]) {
+            return true;
+        }
+    }
+    return false;
+}
 
 void
 compare_format_means(char *buf, size_t cap, const struct metrics *m, const char *separator)
@@ -136,9 +150,6 @@ put_numbers(FILE *f, const struct comparison *c)
     char means[160];
     compare_format_means(means, sizeof means, m, "<br>");
     fprintf(f, "<tr><th>mean R G B</th><td>%s</td></tr>\n", means);
-    if (m->n_nonfinite) {
-        fprintf(f, "<tr><th>NaN or Inf</th><td>%zu pixels</td></tr>\n", m->n_nonfinite);
-    }
     fprintf(
         f,
         "<tr><th>size</th><td>%d &times; %d pixels</td></tr>\n",
@@ -190,9 +201,12 @@ put_failing(FILE *f, const struct comparison *c)
     if (c->n_failing > 100) {
         fprintf(f, "<li>... and %d more</li>\n", c->n_failing - 100);
     }
-    fputs("</ul>\n<p class=\"note\">", f);
-    put_escaped(f, compare_bias_hint);
-    fputs(".</p>\n", f);
+    fputs("</ul>\n", f);
+    if (compare_bias_hint_applies(c)) {
+        fputs("<p class=\"note\">", f);
+        put_escaped(f, compare_bias_hint);
+        fputs(".</p>\n", f);
+    }
 }
 
 /* --regions: a row per region of the reference scene's feature pass. */
@@ -211,7 +225,7 @@ put_regions(FILE *f, const struct comparison *c)
     for (int i = 0; i < rep->n_regions; i++) {
         const struct region_result *r = &rep->regions[i];
         char name[32], line[512];
-        regions_describe(line, sizeof line, r, rep->noise);
+        regions_describe(line, sizeof line, r, rep);
         fprintf(
             f,
             "<tr><th>%s</th><td>%zu pixels: ",
@@ -229,8 +243,8 @@ put_regions(FILE *f, const struct comparison *c)
 static const char how_to_read[] =
     "<h2>How to read this page</h2>\n"
     "<p class=\"note\">The error map shows each pixel's signed relative error of luminance: blue where the "
-    "render is darker than the reference, red where it is brighter, white where they agree; green marks "
-    "NaN or infinite pixels.  Noise looks like salt and pepper that fades with more samples.  A bias "
+    "render is darker than the reference, red where it is brighter, white where they agree.  Noise "
+    "looks like salt and pepper that fades with more samples.  A bias "
     "(a missing cosine, a wrong pdf, light leaking through an offset) is a region of one colour that "
     "stays when the samples grow; the block test finds those and outlines them in black.  "
     "'Consistent' means no block differs by more than its noise explains at the stated level: "

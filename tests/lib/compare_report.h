@@ -69,11 +69,17 @@ struct comparison {
 int compare_block_channel(const struct metrics_block *b);
 
 /* One sentence about failing block b: "the block at x 0-15, y 32-47 is 2.5%
- * darker than the reference (green), 6.1 standard errors". */
+ * darker than the reference (channel G), 6.1 standard errors". */
 void compare_describe_block(char *buf, size_t cap, const struct metrics_block *b);
 
-/* What to do next about failing blocks: render again with more samples. */
+/* What to do next about failing blocks that are darker than the
+ * reference: render again with more samples. */
 extern const char compare_bias_hint[];
+
+/* Whether the hint is about c: a failing block is darker than the
+ * reference (rare bright paths missed); a block that is only brighter is
+ * not explained by paths the samples missed. */
+bool compare_bias_hint_applies(const struct comparison *c);
 
 /* "render R G B, reference R G B": the means of both images, per channel. */
 void compare_format_means(char *buf, size_t cap, const struct metrics *m, const char *separator);

@@ -444,7 +444,7 @@ errmap_auto_range(const struct image *render, const struct image *ref)
 static void
 format_percent(char *buf, size_t cap, const char *sign, double range)
 {
-    snprintf(buf, cap, "%s%.3g%%", sign, range * 100);
+    snprintf(buf, cap, "%s%.4g%%", sign, range * 100); /* 4 digits: 1000, not 1e+03 */
 }
 
 /* The legend below the map, from row y0 of out, magnification f. */

@@ -4,6 +4,7 @@
 #include "metrics.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "stattest.h"
@@ -487,4 +488,14 @@ metrics_block_rejections(const struct metrics_block_stats *s, double alpha, doub
         *min_p = lowest;
     }
     return rejected;
+}
+
+void
+metrics_format_plain(char *buf, size_t cap, double v)
+{
+    double a = fabs(v);
+    /* Decimals for two significant digits below 10 (0.0031: 4); none at
+     * 10 and above.  At most 9: smaller numbers print as 0. */
+    int decimals = a > 0 && a < 10 ? 1 - (int)floor(log10(a)) : 0;
+    snprintf(buf, cap, "%.*f", decimals < 9 ? decimals : 9, v);
 }

@@ -171,6 +171,12 @@ bool metrics_block_stats_variance(
     struct metrics_block_stats *out,
     struct diag *err);
 
+/* v as a reader writes it, never with an exponent: at least two
+ * significant digits, and every digit before the point ("1400", "16",
+ * "2.5", "0.0031"), into buf.  For percentages and standard errors, where
+ * printf's %g writes 1e+02 and 1.4e+03. */
+void metrics_format_plain(char *buf, size_t cap, double v);
+
 /* Free the blocks; accepts a zero-initialised struct. */
 void metrics_block_stats_free(struct metrics_block_stats *s);
 

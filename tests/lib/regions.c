@@ -281,7 +281,7 @@ judge_blocks(
 bool
 regions_compare(const struct region_inputs *in, struct region_report *out, struct diag *err)
 {
-    *out = (struct region_report){.noise = in->variance->rgb != NULL};
+    *out = (struct region_report){.noise = in->variance->rgb != NULL, .max_relmse = in->max_relmse};
     if (!check_inputs(in, err)) {
         return false;
     }
@@ -390,11 +390,8 @@ regions_label_name(int label, char *buf, size_t cap)
     return buf;
 }
 
-/* "3.1% darker than the reference (green), 5.8 standard errors" for the
- * channel of the smallest p (or, without noise, of the largest relative
- * difference). */
-static int
-describe_difference(
+int
+regions_describe_difference(
     char *buf,
     size_t cap,
     const double mean[3],
@@ -403,7 +400,9 @@ describe_difference(
     const double p[3],
     bool noise)
 {
-    static const char *const names[3] = {"red", "green", "blue"};
+    /* Channels by letter: the error map's colours (blue darker, red
+     * brighter) are not the channels'. */
+    static const char names[3] = {'R', 'G', 'B'};
     int ch = 0;
     for (int c = 1; c < 3; c++) {
         double rel_c = fabs(mean[c] - ref_mean[c]) / fmax(fabs(ref_mean[c]), 1e-12);
@@ -419,46 +418,49 @@ describe_difference(
     if (diff == 0) {
         return snprintf(buf, cap, "equal to the reference");
     }
-    int n = ref_mean[ch] != 0 ? snprintf(
-                buf,
-                cap,
-                "%.2g%% %s than the reference (%s)",
-                fabs(100 * diff / ref_mean[ch]),
-                diff < 0 ? "darker" : "brighter",
-                names[ch])
-                              : snprintf(
-                                  buf,
-                                  cap,
-                                  "%.3g %s than the reference's 0 (%s)",
-                                  fabs(diff),
-                                  diff < 0 ? "darker" : "brighter",
-                                  names[ch]);
+    char size[64];
+    double size_of = ref_mean[ch] != 0 ? fabs(100 * diff / ref_mean[ch]) : fabs(diff);
+    metrics_format_plain(size, sizeof size, size_of);
+    int n = snprintf(
+        buf,
+        cap,
+        ref_mean[ch] != 0 ? "%s%% %s than the reference (channel %c)"
+                          : "%s %s than the reference's 0 (channel %c)",
+        size,
+        diff < 0 ? "darker" : "brighter",
+        names[ch]);
     if (noise && n >= 0 && (size_t)n < cap) {
-        n += isinf(t[ch])
-                 ? snprintf(buf + n, cap - (size_t)n, ", and no noise to explain it")
-                 : snprintf(buf + n, cap - (size_t)n, ", %.2g standard errors", fabs(t[ch]));
+        metrics_format_plain(size, sizeof size, fabs(t[ch]));
+        n += isinf(t[ch]) ? snprintf(buf + n, cap - (size_t)n, ", and no noise to explain it")
+                          : snprintf(buf + n, cap - (size_t)n, ", %s standard errors", size);
     }
     return n;
 }
 
 void
-regions_describe(char *buf, size_t cap, const struct region_result *r, bool noise)
+regions_describe(
+    char *buf,
+    size_t cap,
+    const struct region_result *r,
+    const struct region_report *rep)
 {
     int n;
-    if (!noise) {
-        n = describe_difference(buf, cap, r->mean, r->ref_mean, r->t, r->p, false);
+    if (!rep->noise) {
+        n = regions_describe_difference(buf, cap, r->mean, r->ref_mean, r->t, r->p, false);
         if (n >= 0 && (size_t)n < cap) {
             snprintf(
                 buf + n,
                 cap - (size_t)n,
-                ", relMSE %.3g: %s",
+                ", relMSE %.3g%s",
                 r->relmse,
-                r->biased ? "over the limit" : "under the limit");
+                !(rep->max_relmse > 0) ? ""
+                : r->biased            ? ": over the limit"
+                                       : ": under the limit");
         }
         return;
     }
     if (!r->biased || r->whole_rejects) {
-        n = describe_difference(buf, cap, r->mean, r->ref_mean, r->t, r->p, true);
+        n = regions_describe_difference(buf, cap, r->mean, r->ref_mean, r->t, r->p, true);
         if (n >= 0 && (size_t)n < cap) {
             snprintf(buf + n, cap - (size_t)n, ": %s", r->biased ? "biased" : "consistent");
         }
@@ -474,7 +476,7 @@ regions_describe(char *buf, size_t cap, const struct region_result *r, bool nois
         r->y0,
         r->y0 + r->h - 1);
     if (n >= 0 && (size_t)n < cap) {
-        n += describe_difference(
+        n += regions_describe_difference(
             buf + n,
             cap - (size_t)n,
             r->block_mean,

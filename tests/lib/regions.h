@@ -58,6 +58,7 @@ struct region_report {
     int n_tests; /* in the family (3 per region and per block of a region) */
     double level; /* the Sidak-corrected level of one test */
     bool noise; /* tested against noise (else against max_relmse) */
+    double max_relmse; /* without noise: the limit (0: none, nothing judged) */
 };
 
 struct region_inputs {
@@ -86,8 +87,26 @@ void regions_sort(struct region_report *rep);
 /* The name of a label (aov.h's label names; "label N" past them). */
 const char *regions_label_name(int label, char *buf, size_t cap);
 
-/* One line about region r: "3.1% darker than the reference (green), 5.8
- * standard errors: biased" (without the region's name). */
-void regions_describe(char *buf, size_t cap, const struct region_result *r, bool noise);
+/* "3.1% darker than the reference (channel G), 5.8 standard errors": of
+ * the channel of the smallest p (without noise: of the largest relative
+ * difference; no standard errors then), numbers written plainly
+ * (metrics_format_plain).  Returns snprintf's count. */
+int regions_describe_difference(
+    char *buf,
+    size_t cap,
+    const double mean[3],
+    const double ref_mean[3],
+    const double t[3],
+    const double p[3],
+    bool noise);
+
+/* One line about region r of rep: "3.1% darker than the reference
+ * (channel G), 5.8 standard errors: biased" (without the region's name);
+ * without noise, its relMSE, and against the limit when there is one. */
+void regions_describe(
+    char *buf,
+    size_t cap,
+    const struct region_result *r,
+    const struct region_report *rep);
 
 #endif /* REGIONS_H */

@@ -11,7 +11,8 @@
  * the family level --alpha Sidak-corrected for the number of tests, and
  * the verdict names the blocks that fail.  Optional outputs: the error map
  * (--map, errmap.h) and a self-contained report page (--html, compare_report.c).
- * Exit status: 0 the images agree, 1 biased, 2 bad input or usage.
+ * Exit status: 0 the images agree, 1 biased, 2 bad input or usage (an
+ * image holding NaN or infinite pixels, an output that is an input).
  */
 #include <errno.h>
 #include <math.h>
@@ -23,6 +24,7 @@
 #include "errmap.h"
 #include "estimate.h"
 #include "imgread.h"
+#include "output_check.h"
 #include "pathcheck.h"
 #include "stattest.h"
 
@@ -94,8 +96,9 @@ usage(FILE *f)
         "  -h, --help          this text\n"
         "\n"
         "Exit status: 0 the images agree (or, one render alone, were compared),\n"
-        "1 biased (or relMSE above --max-relmse, or NaN/Inf pixels, or a region\n"
-        "biased), 2 bad input.\n",
+        "1 biased (or relMSE above --max-relmse, or a region biased or over it),\n"
+        "2 bad input: an unreadable image, a NaN or infinite pixel in any image\n"
+        "(named, with its file), or --map or --html naming an input or each other.\n",
         f);
 }
 
@@ -268,6 +271,37 @@ reference_noise_from_meta(struct comparison *c)
     }
 }
 
+/* A NaN or infinite pixel has no error to measure, and would turn every
+ * mean it enters into NaN: such an input is refused, naming its first one
+ * (to replay) and how many there are. */
+static bool
+check_finite(const struct image *img, const char *path, struct diag *err)
+{
+    static const char channels[3] = {'R', 'G', 'B'};
+    size_t n = (size_t)img->width * (size_t)img->height * 3;
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(img->rgb[i])) {
+            size_t x = i / 3 % (size_t)img->width, y = i / 3 / (size_t)img->width;
+            diag_set(
+                err,
+                path,
+                0,
+                0,
+                "pixel %zu,%zu is %s in channel %c (NaN or infinite pixels: %zu): compare needs "
+                "finite pixels; render --pixel %zu,%zu --trace - replays one",
+                x,
+                y,
+                isnan(img->rgb[i]) ? "NaN" : "infinite",
+                channels[i % 3],
+                metrics_count_nonfinite(img),
+                x,
+                y);
+            return false;
+        }
+    }
+    return true;
+}
+
 /* Read every input; the renders are combined into their mean and its
  * per-pixel variance.  False (diag) on unreadable files or mismatches. */
 static bool
@@ -275,10 +309,12 @@ load_inputs(struct comparison *c, struct diag *err)
 {
     struct image renders[MAX_RENDERS] = {{0}};
     double weights[MAX_RENDERS];
-    bool ok = imgread(c->reference_path, &c->reference, err);
+    bool ok = imgread(c->reference_path, &c->reference, err)
+              && check_finite(&c->reference, c->reference_path, err);
     for (int j = 0; ok && j < c->k; j++) {
         weights[j] = 1;
-        ok = imgread(c->render_paths[j], &renders[j], err);
+        ok = imgread(c->render_paths[j], &renders[j], err)
+             && check_finite(&renders[j], c->render_paths[j], err);
         if (ok
             && (renders[j].width != c->reference.width
                 || renders[j].height != c->reference.height)) {
@@ -364,40 +400,23 @@ compare_block_channel(const struct metrics_block *b)
 void
 compare_describe_block(char *buf, size_t cap, const struct metrics_block *b)
 {
-    static const char *const names[3] = {"red", "green", "blue"};
-    int ch = compare_block_channel(b);
-    double diff = b->mean[ch] - b->ref_mean[ch];
     int n = snprintf(
         buf,
         cap,
-        "the block at x %d-%d, y %d-%d ",
+        "the block at x %d-%d, y %d-%d is ",
         b->x0,
         b->x0 + b->w - 1,
         b->y0,
         b->y0 + b->h - 1);
-    if (n < 0 || (size_t)n >= cap) {
-        return;
-    }
-    if (!isfinite(b->mean[ch])) {
-        snprintf(buf + n, cap - (size_t)n, "holds NaN or infinite pixels");
-    } else if (b->ref_mean[ch] != 0) {
-        snprintf(
+    if (n >= 0 && (size_t)n < cap) {
+        regions_describe_difference(
             buf + n,
             cap - (size_t)n,
-            "is %.2g%% %s than the reference (%s), %.2g standard errors",
-            fabs(100 * diff / b->ref_mean[ch]),
-            diff < 0 ? "darker" : "brighter",
-            names[ch],
-            fabs(b->t[ch]));
-    } else {
-        snprintf(
-            buf + n,
-            cap - (size_t)n,
-            "is %.3g %s than the reference's 0 (%s), %.2g standard errors",
-            fabs(diff),
-            diff < 0 ? "darker" : "brighter",
-            names[ch],
-            fabs(b->t[ch]));
+            b->mean,
+            b->ref_mean,
+            b->t,
+            b->p,
+            true);
     }
 }
 
@@ -480,9 +499,6 @@ find_worst(struct comparison *c)
         if (n > 0 && (c->worst < 0 || !(fabs(e) <= fabs(c->worst_error)))) {
             c->worst = i;
             c->worst_error = e;
-            if (!isfinite(e)) {
-                return;
-            }
         }
     }
 }
@@ -492,16 +508,9 @@ decide(struct comparison *c)
 {
     const struct metrics *m = &c->m;
     if (c->noise == NOISE_NONE) {
-        bool nonfinite = m->n_nonfinite > 0;
         bool over = c->max_relmse > 0 && !(m->relmse <= c->max_relmse);
-        c->status = nonfinite || over ? COMPARE_BIASED : COMPARE_AGREE;
-        if (nonfinite) {
-            snprintf(
-                c->verdict,
-                sizeof c->verdict,
-                "wrong: %zu pixels are NaN or infinite",
-                m->n_nonfinite);
-        } else if (over) {
+        c->status = over ? COMPARE_BIASED : COMPARE_AGREE;
+        if (over) {
             snprintf(
                 c->verdict,
                 sizeof c->verdict,
@@ -573,9 +582,11 @@ print_text(const struct comparison *c)
     }
     printf("\nreference  %s", c->reference_path);
     if (c->ref_rel_se > 0) {
+        char se[64];
+        metrics_format_plain(se, sizeof se, c->ref_rel_se);
         printf(
-            " (relative SE %.2g per pixel, %g dof%s)",
-            c->ref_rel_se,
+            " (relative SE %s per pixel, %g dof%s)",
+            se,
             c->ref_dof,
             c->ref_se_from_meta ? ", from its META.json" : "");
     }
@@ -591,9 +602,6 @@ print_text(const struct comparison *c)
     char means[160];
     compare_format_means(means, sizeof means, m, ", ");
     printf("mean R G B %s\n", means);
-    if (m->n_nonfinite) {
-        printf("NaN/Inf    %zu pixels (left out of the numbers above)\n", m->n_nonfinite);
-    }
     if (c->worst >= 0) {
         int bs = c->block_size, bx = (c->render.width + bs - 1) / bs;
         int x0 = (c->worst % bx) * bs, y0 = (c->worst / bx) * bs;
@@ -603,14 +611,9 @@ print_text(const struct comparison *c)
             (x0 + bs < c->render.width ? x0 + bs : c->render.width) - 1,
             y0,
             (y0 + bs < c->render.height ? y0 + bs : c->render.height) - 1);
-        if (isfinite(c->worst_error)) {
-            printf(
-                "luminance %.2g%% %s\n",
-                fabs(100 * c->worst_error),
-                c->worst_error < 0 ? "darker" : "brighter");
-        } else {
-            printf("NaN or infinite pixels\n");
-        }
+        char size[64];
+        metrics_format_plain(size, sizeof size, fabs(100 * c->worst_error));
+        printf("luminance %s%% %s\n", size, c->worst_error < 0 ? "darker" : "brighter");
     }
     if (c->noise != NOISE_NONE) {
         printf(
@@ -639,7 +642,7 @@ print_text(const struct comparison *c)
     if (c->n_failing > MAX_LISTED) {
         printf("           ... and %d more (see the error map)\n", c->n_failing - MAX_LISTED);
     }
-    if (c->n_failing) {
+    if (compare_bias_hint_applies(c)) {
         print_wrapped("hint       ", compare_bias_hint);
     }
 }
@@ -709,16 +712,31 @@ print_regions(const struct args *a)
     for (int i = 0; i < rep->n_regions; i++) {
         biased += rep->regions[i].biased;
     }
-    printf(
-        "regions    %d of %d biased, by the reference's feature pass %s (%s)\n",
-        biased,
-        rep->n_regions,
-        a->regions_path,
-        rep->noise ? "t-tests of each region and of its part in each block" : "relMSE per region");
+    if (rep->noise) {
+        printf(
+            "regions    %d of %d biased, by the reference's feature pass %s (t-tests of each "
+            "region and of its part in each block)\n",
+            biased,
+            rep->n_regions,
+            a->regions_path);
+    } else if (rep->max_relmse > 0) {
+        printf(
+            "regions    %d of %d over the limit, by the reference's feature pass %s (relMSE per "
+            "region; one render: noise not told from bias)\n",
+            biased,
+            rep->n_regions,
+            a->regions_path);
+    } else {
+        printf(
+            "regions    %d, by the reference's feature pass %s (relMSE per region; one render: "
+            "noise not told from bias)\n",
+            rep->n_regions,
+            a->regions_path);
+    }
     for (int i = 0; i < rep->n_regions; i++) {
         const struct region_result *r = &rep->regions[i];
         char name[32], line[512];
-        regions_describe(line, sizeof line, r, rep->noise);
+        regions_describe(line, sizeof line, r, rep);
         printf(
             "  %-12s %7zu px: %s\n",
             regions_label_name(r->label, name, sizeof name),
@@ -736,10 +754,39 @@ print_regions(const struct args *a)
     }
 }
 
+/* --map and --html: two files, neither one of the inputs (output_check.h,
+ * as render checks its outputs: by file identity, before any work). */
+static bool
+check_outputs(const struct args *a, struct diag *err)
+{
+    struct named_file outputs[2], inputs[MAX_RENDERS + 3];
+    int n_out = 0, n_in = 0;
+    if (a->map_path) {
+        outputs[n_out++] = (struct named_file){"--map", a->map_path};
+    }
+    if (a->html_path) {
+        outputs[n_out++] = (struct named_file){"--html", a->html_path};
+    }
+    for (int j = 0; j < a->c.k; j++) {
+        inputs[n_in++] = (struct named_file){"the render", a->c.render_paths[j]};
+    }
+    inputs[n_in++] = (struct named_file){"the reference", a->c.reference_path};
+    if (a->c.variance_path) {
+        inputs[n_in++] = (struct named_file){"--variance", a->c.variance_path};
+    }
+    if (a->regions_path) {
+        inputs[n_in++] = (struct named_file){"--regions", a->regions_path};
+    }
+    return output_check(outputs, n_out, inputs, n_in, err) == OUTPUTS_OK;
+}
+
 static bool
 run(struct args *a, struct diag *err)
 {
     struct comparison *c = &a->c;
+    if (!check_outputs(a, err)) {
+        return false;
+    }
     if (!a->ref_se_given) {
         reference_noise_from_meta(c);
     }
