@@ -15,6 +15,9 @@
 #   make gallery    scenes/README.md: every scene, its first correct stage and 07
 #   make config     what the build found (OpenEXR, tinygltf)
 #   make lab STAGE=05 OUT=dir   a lab handout; make grade LAB=dir grades one
+#   make autograder STAGE=05 OUT=dir   Gradescope's autograder of a lab;
+#                   make grade-class SUBMISSIONS=dir a whole class (CSV, HTML;
+#                   SCHEDULER=slurm); make farm-render a render over Slurm tasks
 #   make diffs      docs/diffs/*.diff and the diff table; make branches OUT=dir
 #   make check-labs every check of every handout (make test runs the quick ones)
 #   make clean
@@ -121,6 +124,22 @@ grade:
 	@if [ -z "$(LAB)" ]; then echo "usage: make grade LAB=path" >&2; exit 2; fi
 	@tests/lab/grade.sh --pristine "$(LAB)"
 
+# A course at scale (tests/course/README.md): Gradescope's autograder, a
+# whole class graded (locally or as a Slurm job array), a render split over
+# a Slurm cluster.
+autograder:
+	@if [ -z "$(STAGE)" ] || [ -z "$(OUT)" ]; then echo "usage: make autograder STAGE=05 OUT=path" >&2; exit 2; fi
+	@tests/course/autograder.sh "$(STAGE)" "$(OUT)"
+
+grade-class:
+	@if [ -z "$(SUBMISSIONS)" ]; then echo "usage: make grade-class SUBMISSIONS=dir [STAGE=05] [OUT=dir] [SCHEDULER=local|slurm] [JOBS=N]" >&2; exit 2; fi
+	@tests/course/grade-class.sh $(if $(STAGE),--stage "$(STAGE)") $(if $(OUT),--out "$(OUT)") \
+		$(if $(SCHEDULER),--scheduler "$(SCHEDULER)") $(if $(JOBS),--jobs "$(JOBS)") "$(SUBMISSIONS)"
+
+farm-render: all
+	@if [ -z "$(SCENE)" ] || [ -z "$(SPP)" ] || [ -z "$(TASKS)" ]; then echo "usage: make farm-render SCENE=file SPP=N TASKS=N [STAGE=07] [OUT=dir]" >&2; exit 2; fi
+	@tests/course/farm-render.sh $(if $(STAGE),--stage "$(STAGE)") $(if $(OUT),--out "$(OUT)") "$(SCENE)" "$(SPP)" "$(TASKS)"
+
 diffs:
 	@tests/lab/make-diffs.sh
 
@@ -160,6 +179,9 @@ help:
 	'make docs-images      the lessons'"'"' pictures (docs/images/)' \
 	'make lab STAGE=NN OUT=dir   a lab handout (SOLUTION=1 the instructor'"'"'s; FORCE=1 moves a changed one aside)' \
 	'make grade LAB=dir    build a handout, run its tests, score them' \
+	'make autograder STAGE=NN OUT=dir   the Gradescope autograder of a lab (OUT/autograder.zip)' \
+	'make grade-class SUBMISSIONS=dir   grade every submission: a CSV and an HTML summary (SCHEDULER=slurm: a job array)' \
+	'make farm-render SCENE=f SPP=N TASKS=N   one render split over N Slurm tasks by seed, merged' \
 	'make diffs            docs/diffs/*.diff and the diff table of docs/README.md' \
 	'make branches OUT=dir the stages as a git repository, one commit per stage (FORCE=1 replaces)' \
 	'make check-labs       every check of every lab handout' \
@@ -167,4 +189,4 @@ help:
 	'make clean            remove build/' \
 	'make help             this list'
 
-.PHONY: all models common tools test sanitize fuzz config demo gallery trade bench docs-images clean lab grade diffs branches check-labs reference-masks help $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config demo gallery trade bench docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)

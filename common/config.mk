@@ -11,6 +11,11 @@
 #   OPENEXR=0|1     override the pkg-config detection of OpenEXR
 #   TINYGLTF=0|1    override the detection of tinygltf (glTF meshes)
 
+# GNU make 4 or newer ($(file) in the flags stamps below); macOS ships 3.81.
+ifneq ($(filter 3.%,$(MAKE_VERSION)),)
+$(error stagelight needs GNU make 4 or newer, this is $(MAKE_VERSION): on macOS, brew install make and run gmake, or open the devcontainer)
+endif
+
 CC ?= cc
 CXX ?= c++
 # -O3: the same results bit for bit as -O2 (no fast-math), and 16% fewer
@@ -24,6 +29,13 @@ PKG_CONFIG ?= pkg-config
 # behind our back), so results are the same at every optimisation level.
 WARN := -std=c11 -Wall -Wextra -Wpedantic -Wshadow -Wstrict-prototypes \
         -Wmissing-prototypes -Wvla -Wformat=2 -Wundef -Wwrite-strings
+# clang's -Wstatic-in-inline takes the stages' `inline` intersection routines
+# (geometry.c) for inline definitions, which may not call static functions;
+# geometry.h declares them without `inline`, which makes them external
+# definitions, to which that rule does not apply (C11 6.7.4p3, p7).
+ifneq ($(findstring clang,$(shell $(CC) --version 2>/dev/null | head -n 1)),)
+WARN += -Wno-static-in-inline
+endif
 ifeq ($(WERROR),1)
 WARN += -Werror
 endif

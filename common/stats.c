@@ -189,5 +189,9 @@ peak_rss_bytes(void)
     if (getrusage(RUSAGE_SELF, &usage) != 0) {
         return 0;
     }
-    return (uint64_t)usage.ru_maxrss * 1024u; /* Linux reports kilobytes */
+#ifdef __APPLE__
+    return (uint64_t)usage.ru_maxrss; /* macOS reports bytes */
+#else
+    return (uint64_t)usage.ru_maxrss * 1024u; /* Linux and the BSDs report kilobytes */
+#endif
 }

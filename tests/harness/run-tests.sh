@@ -92,8 +92,10 @@ for prog in "$@"; do
     private=$(mktemp -d "${TMPDIR:-/tmp}/p.XXXXXX") || exit 2
     start=$(date +%s)
     # In the background so that an interrupt reaches the handler at once;
-    # timeout runs the program in a process group of its own.
-    TMPDIR=$private TEST_TMPDIR=$private timeout -k 10 "$limit" "$prog" >"$log" 2>&1 </dev/null &
+    # timeout runs the program in a process group of its own (with-timeout.sh:
+    # timeout(1), or a shell watchdog where it is absent).
+    TMPDIR=$private TEST_TMPDIR=$private "$(dirname "$0")/with-timeout.sh" "$limit" "$prog" \
+        >"$log" 2>&1 </dev/null &
     pid=$!
     wait "$pid"
     status=$?

@@ -286,28 +286,35 @@ main(void)
     return 0;
 }
 EOF
-mkdir -p "$T/tmp"
-log=$C/build/tests/logs/02_fake-02_hang.log
-rm -f "$log"
-# shellcheck disable=SC2086 # CLEAN_ENV is a list of options
-(cd "$C" && exec env $CLEAN_ENV TMPDIR="$T/tmp" \
-    setsid make --no-print-directory TINYGLTF=0 OPENEXR=0 test STAGE=02) >"$T/out" 2>"$T/err" &
-job=$!
-# Up to 300 s for the copy to build stage 02 (double and float) and its
-# tests on a loaded machine; the loop ends as soon as the test has started.
-i=0
-while [ "$i" -lt 3000 ] && ! grep -qs started "$log"; do
-    sleep 0.1
-    i=$((i + 1))
-done
-kill -TERM -- "-$job" 2>/dev/null
-st=0
-wait "$job" || st=$?
-left=$(ls -A "$T/tmp")
-if grep -qs started "$log" && [ "$st" -ne 0 ] && [ -z "$left" ]; then
-    ok interrupted-run-cleans-up
+# setsid (util-linux) starts the run in a process group of its own, the
+# group a terminal signals; without it (macOS) the check is skipped.
+if command -v setsid >/dev/null 2>&1; then
+    mkdir -p "$T/tmp"
+    log=$C/build/tests/logs/02_fake-02_hang.log
+    rm -f "$log"
+    # shellcheck disable=SC2086 # CLEAN_ENV is a list of options
+    (cd "$C" && exec env $CLEAN_ENV TMPDIR="$T/tmp" \
+        setsid make --no-print-directory TINYGLTF=0 OPENEXR=0 test STAGE=02) >"$T/out" 2>"$T/err" &
+    job=$!
+    # Up to 300 s for the copy to build stage 02 (double and float) and its
+    # tests on a loaded machine; the loop ends as soon as the test has started.
+    i=0
+    while [ "$i" -lt 3000 ] && ! grep -qs started "$log"; do
+        sleep 0.1
+        i=$((i + 1))
+    done
+    kill -TERM -- "-$job" 2>/dev/null
+    st=0
+    wait "$job" || st=$?
+    left=$(ls -A "$T/tmp")
+    if grep -qs started "$log" && [ "$st" -ne 0 ] && [ -z "$left" ]; then
+        ok interrupted-run-cleans-up
+    else
+        fail interrupted-run-cleans-up "exit $st; left in TMPDIR: $left" "$(said)"
+    fi
 else
-    fail interrupted-run-cleans-up "exit $st; left in TMPDIR: $left" "$(said)"
+    skipped=$((skipped + 1))
+    echo "skip runner/interrupted-run-cleans-up: no setsid here to start the run in a process group"
 fi
 rm -f "$C/tests/stage/02_hang.c"
 

@@ -12,6 +12,10 @@
 #                                (lablib.sh, test_statuses)
 # controls: "known" (the C lines are all of them) or "unknown" (none could
 # be found: every test is scored).
+# tests=FILE (optional): also write how each TEST() counted, one line each,
+# tab-separated: KIND FROM PROGRAM TEST STATUS NOTE, KIND one of lab (scored:
+# one of lab_total), control, skipped (a skipped test of the lab) or earlier;
+# NOTE is the program's (for the course tools: tests/course/).
 #
 # The score is the share of the lab's own tests (FROM = nn) that pass,
 # leaving out the skipped ones and the controls: a test that passes without
@@ -37,9 +41,14 @@ $1 == "T" {
         cname[nc] = $3 "/" $4
         cstatus[nc] = $5
         if ($5 == "FAIL") cfailed++
+        counted("control", i)
         next
     }
-    if ($5 == "skip") next
+    if ($5 == "skip") {
+        counted($2 == nn ? "skipped" : "earlier", i)
+        next
+    }
+    counted($2 == nn ? "lab" : "earlier", i)
     total[i]++
     if ($5 == "ok") passed[i]++
     else {
@@ -47,6 +56,10 @@ $1 == "T" {
         if (nf[i] <= 5) failed[i] = failed[i] (nf[i] > 1 ? ", " : "") $4
         else if (nf[i] == 6) failed[i] = failed[i] ", ..."
     }
+}
+
+function counted(kind, i) {
+    if (tests != "") printf "%s\t%s\t%s\t%s\t%s\t%s\n", kind, $2, $3, $4, $5, (note[i] == "" ? "-" : note[i]) > tests
 }
 
 function line(i,    s) {

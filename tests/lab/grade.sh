@@ -35,6 +35,10 @@
 #   --pages DIR    where the report pages go (default LAB/grade): one
 #                  compare page per reference render (grade-pages.sh)
 #   --no-pages     write no report pages
+#   --keep DIR     keep what the grading read in DIR: its records, the
+#                  test programs' logs (NAME.log), the build's (build.log),
+#                  and how each TEST() counted (tests: grade.awk's tests=)
+#                  (for the course tools, tests/course/)
 #   --timeout SEC  time limit of one test program (default 300; 0: none)
 #   --jobs N       parallel make jobs (default: the number of processors)
 #   --root DIR     the project, for --pristine and the controls (default:
@@ -53,10 +57,11 @@ pages=
 no_pages=0
 controls=
 save_controls=
+keep=
 limit=300
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
 parse_options '--pristine pristine=1 --no-pages no_pages=1 --pages pages=VALUE --controls controls=VALUE
-    --save-controls save_controls=VALUE --timeout limit=VALUE --jobs jobs=VALUE --root root=DIR' "$@"
+    --save-controls save_controls=VALUE --keep keep=VALUE --timeout limit=VALUE --jobs jobs=VALUE --root root=DIR' "$@"
 shift "$po_used"
 [ $# -eq 1 ] || usage_error "expected one handout directory, got $# argument(s)"
 case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
@@ -155,5 +160,9 @@ if [ "$build" != failed ] && [ "$no_pages" -eq 0 ]; then
     "$LAB_DIR/grade-pages.sh" "$dir" "$stage" "${pages:-$lab/grade}" || echo "note: some pages could not be written"
 fi
 
+if [ -n "$keep" ]; then
+    mkdir -p "$keep" || die "cannot write $keep"
+    cp "$work"/*.log "$work/records" "$keep/" 2>/dev/null || true
+fi
 awk -v nn="$nn" -v stage="$stage" -v build="$build" -v controls="$controls_known" \
-    -f "$LAB_DIR/grade.awk" "$work/records"
+    -v tests="${keep:+$keep/tests}" -f "$LAB_DIR/grade.awk" "$work/records"

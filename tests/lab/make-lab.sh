@@ -11,7 +11,14 @@
 #   tests/           the harness and the stage tests that apply to stage NN
 #                    (the autograder), reference images, test scenes
 #   scenes/          the scenes
-#   Makefile         make (build), make test (the autograder)
+#   Makefile         make (build), make test (the autograder), make check
+#                    TEST=PROGRAM/NAME (one test)
+#   .devcontainer/   the project's development container (VS Code,
+#                    Codespaces): Debian and the packages CI installs
+#   .github/         GitHub Classroom's autograding: the workflow and the
+#                    test list, one entry per test of the lab with its points
+#                    (tests/course/classroom.sh; controls, from
+#                    tests/course/controls/NN_name, get 0 points)
 #   LAB.md           the "Lab" section of docs/stages/NN_name.md, the places
 #                    to write code, and the tests
 # The marker format is in tests/lab/README.md.  OUT must not exist, be
@@ -119,6 +126,16 @@ write_tests() {
 write_makefile() {
     sed -e "s/@STAGE@/$stage/g" -e "s/@NN@/$nn/g" "$LAB_DIR/handout.mk.in" >"$tmp/Makefile"
     printf '/build/\n' >"$tmp/.gitignore"
+}
+
+# The development container, and GitHub Classroom's autograding files.
+write_course_files() {
+    if [ -d "$root/.devcontainer" ]; then
+        copy_files "$root/.devcontainer" "$tmp/.devcontainer"
+    fi
+    wc_controls=$root/tests/course/controls/$stage
+    [ -f "$wc_controls" ] || wc_controls=-
+    "$LAB_DIR/../course/classroom.sh" "$tmp" "$wc_controls" || die "could not write the autograding workflow"
 }
 
 # The Lab section of the stage's docs page, its linked files copied.
@@ -304,6 +321,7 @@ copy_files "$root/common" "$tmp/common"
 copy_files "$root/scenes" "$tmp/scenes"
 write_tests
 write_makefile
+write_course_files
 write_labmd
 file_list "$tmp" >"$tmp.list" && mv "$tmp.list" "$tmp/$MANIFEST"
 protect_changes

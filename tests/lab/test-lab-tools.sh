@@ -367,6 +367,8 @@ test_make_lab() {
     check make-lab/writes "$LAB_DIR/make-lab.sh" --strict --quiet --root "$M" 02 "$H"
     (cd "$H" && find . -type f | sed 's|^\./||' | LC_ALL=C sort) >"$T/files"
     cat >"$T/files.expected" <<'EOF'
+.github/classroom/autograding.json
+.github/workflows/classroom.yml
 .gitignore
 .stagelight-handout
 LAB.md

@@ -399,7 +399,11 @@ test_wait_peak(int pid, long *peak_kib)
         }
     }
     if (peak_kib) {
-        *peak_kib = usage.ru_maxrss; /* Linux: KiB */
+#ifdef __APPLE__
+        *peak_kib = usage.ru_maxrss / 1024; /* macOS: bytes */
+#else
+        *peak_kib = usage.ru_maxrss; /* Linux and the BSDs: KiB */
+#endif
     }
     return exit_code(status);
 }
