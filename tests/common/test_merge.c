@@ -5,6 +5,7 @@
  * renders are merged in tests/stage/07_compare.c.
  */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
@@ -148,7 +149,111 @@ TEST(what_merge_refuses)
     CHECK(merge(help, out) == 0 && strstr(out, "spp"));
 }
 
+/* A render's stats as render --stats writes them (the keys merge reads). */
+static bool
+write_render_stats(const char *name, int spp, int seed)
+{
+    char text[256];
+    snprintf(
+        text,
+        sizeof text,
+        "{\n  \"stage\": \"07_pathtrace\",\n  \"scene\": \"scenes/box.scene\",\n  \"spp\": %d,\n"
+        "  \"seed\": %d\n}\n",
+        spp,
+        seed);
+    return test_write_file(TMP(name), text);
+}
+
+/* Merges of merges, as the README says: the merged stats keep the stage,
+ * the scene and every seed, so a merge of merges is checked like a merge of
+ * renders, and two merges that share a seed are refused, naming it. */
+TEST(merges_of_merges_keep_stage_scene_and_seeds)
+{
+    char out[CAP];
+    for (int seed = 1; seed <= 5; seed++) {
+        char image[32], stats[32];
+        snprintf(image, sizeof image, "d%d.pfm", seed);
+        snprintf(stats, sizeof stats, "d%d.json", seed);
+        CHECK(write_flat(image, (float)seed) && write_render_stats(stats, 16, seed));
+    }
+    const char *const m[] =
+        {"-o", TMP("m.pfm"), "--stats", TMP("m.json"), TMP("d1.pfm"), TMP("d2.pfm"), TMP("d5.pfm"),
+         NULL};
+    CHECK_MSG(merge(m, out) == 0, "%s", out);
+    char *stats = test_read_file(TMP("m.json"), NULL);
+    CHECK_MSG(
+        stats && strstr(stats, "\"stage\": \"07_pathtrace\"")
+            && strstr(stats, "\"scene\": \"scenes/box.scene\"")
+            && strstr(stats, "\"seeds\": [1, 2, 5]"),
+        "%s",
+        stats ? stats : "(none)");
+    free(stats);
+    const char *const mm[] =
+        {"-o", TMP("mm.pfm"), "--stats", TMP("mm.json"), TMP("m.pfm"), TMP("d3.pfm"), NULL};
+    CHECK_MSG(merge(mm, out) == 0 && strstr(out, "64 spp"), "%s", out);
+    check_flat(TMP("mm.pfm"), (1 + 2 + 5 + 3) / 4.0, 1e-5);
+    double spp = 0;
+    CHECK(test_json_number(TMP("mm.json"), "spp", &spp) && spp == 64);
+    /* m holds seed 1; so does m2: refused, naming the seed. */
+    const char *const m2[] =
+        {"-o", TMP("m2.pfm"), "--stats", TMP("m2.json"), TMP("d1.pfm"), TMP("d4.pfm"), NULL};
+    CHECK_MSG(merge(m2, out) == 0, "%s", out);
+    const char *const shared[] = {"-o", TMP("x.pfm"), TMP("m.pfm"), TMP("m2.pfm"), NULL};
+    int status = merge(shared, out);
+    CHECK_MSG(
+        status == 1 && strstr(out, "seed 1") && strstr(out, "the same samples twice"),
+        "%s",
+        out);
+    const char *const again[] = {"-o", TMP("x.pfm"), TMP("mm.pfm"), TMP("d5.pfm"), NULL};
+    status = merge(again, out);
+    CHECK_MSG(status == 1 && strstr(out, "seed 5"), "%s", out);
+    CHECK(!test_file_exists(TMP("x.pfm")));
+}
+
+/* No output overwrites an input, an input's stats or another output, and
+ * no stale stats file is left beside -o: exit 2 before any work, the
+ * inputs untouched. */
+TEST(outputs_never_overwrite_inputs_or_leave_stale_stats)
+{
+    char out[CAP];
+    CHECK(
+        write_flat("i1.pfm", 1) && write_flat("i2.pfm", 2) && write_render_stats("i1.json", 4, 1)
+        && write_render_stats("i2.json", 4, 2) && test_write_file(TMP("old.json"), "{}\n"));
+    char dotted[4200];
+    snprintf(dotted, sizeof dotted, "%s/./w.pfm", test_tmp_path(""));
+    const char *const onto_input[] = {"-o", TMP("i2.pfm"), TMP("i1.pfm"), TMP("i2.pfm"), NULL};
+    const char *const onto_stats[] =
+        {"-o", TMP("y.pfm"), "--stats", TMP("i1.json"), TMP("i1.pfm"), TMP("i2.pfm"), NULL};
+    const char *const twice[] =
+        {"-o", TMP("w.pfm"), "--variance", dotted, TMP("i1.pfm"), TMP("i2.pfm"), NULL};
+    const char *const stale[] = {"-o", TMP("old.pfm"), TMP("i1.pfm"), TMP("i2.pfm"), NULL};
+    const char *const stale_other[] =
+        {"-o", TMP("old.pfm"), "--stats", TMP("new.json"), TMP("i1.pfm"), TMP("i2.pfm"), NULL};
+    const char *const *cases[] = {onto_input, onto_stats, twice, stale, stale_other};
+    const char *const said[] = {
+        "is the input",
+        "is the stats of the input",
+        "are the same file",
+        "old.json: error: beside -o",
+        "old.json: error: beside -o"};
+    CHECK(test_tool_cases("merge", cases, said, sizeof cases / sizeof cases[0], 2));
+    check_flat(TMP("i2.pfm"), 2, 0);
+    double seed = 0;
+    CHECK(test_json_number(TMP("i1.json"), "seed", &seed) && seed == 1);
+    CHECK(
+        !test_file_exists(TMP("y.pfm")) && !test_file_exists(TMP("w.pfm"))
+        && !test_file_exists(TMP("old.pfm")));
+    /* --stats onto the stale file replaces it. */
+    const char *const replaced[] =
+        {"-o", TMP("old.pfm"), "--stats", TMP("old.json"), TMP("i1.pfm"), TMP("i2.pfm"), NULL};
+    CHECK_MSG(merge(replaced, out) == 0, "%s", out);
+    double spp = 0;
+    CHECK(test_json_number(TMP("old.json"), "spp", &spp) && spp == 8);
+}
+
 TEST_MAIN(
     TEST_ENTRY(inputs_are_weighted_by_their_samples),
     TEST_ENTRY(spp_comes_from_stats_files_and_merges_merge_again),
-    TEST_ENTRY(what_merge_refuses))
+    TEST_ENTRY(what_merge_refuses),
+    TEST_ENTRY(merges_of_merges_keep_stage_scene_and_seeds),
+    TEST_ENTRY(outputs_never_overwrite_inputs_or_leave_stale_stats))

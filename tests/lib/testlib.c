@@ -434,6 +434,33 @@ test_run_tool(const char *name, const char *const args[], char *output, size_t c
     return test_run(argv, output, cap);
 }
 
+bool
+test_tool_cases(
+    const char *name,
+    const char *const *const cases[],
+    const char *const said[],
+    size_t n,
+    int status)
+{
+    static char out[16384];
+    bool all = true;
+    for (size_t i = 0; i < n; i++) {
+        int got = test_run_tool(name, cases[i], out, sizeof out);
+        if (got != status || !strstr(out, said[i])) {
+            printf(
+                "%s, case %zu: exit %d (expected %d and '%s'):\n%s\n",
+                name,
+                i,
+                got,
+                status,
+                said[i],
+                out);
+            all = false;
+        }
+    }
+    return all;
+}
+
 /* Whether the program at path is the render of stage `stage` in the given
  * precision: its --version line reads "render (STAGE) ..., P precision".
  * A binary of another stage or precision ends the test program (exit 3,

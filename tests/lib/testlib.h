@@ -91,6 +91,16 @@ const char *test_tool_binary(const char *name);
  * program left out), as test_run does. */
 int test_run_tool(const char *name, const char *const args[], char *output, size_t cap);
 
+/* Run the tool `name` with each argument list cases[i] (i < n): true when
+ * every run exits with `status` and its output holds said[i]; each run
+ * that does not is printed. */
+bool test_tool_cases(
+    const char *name,
+    const char *const *const cases[],
+    const char *const said[],
+    size_t n,
+    int status);
+
 /* Path of the stage's render binary (environment RENDER); NULL if unset.
  * The first call checks that it is the render of the stage the runner names
  * (environment STAGE) in this build's precision, and ends the program with

@@ -10,6 +10,9 @@
  * (README: "Rendering on many machines").  Inputs and output are linear
  * (.pfm, or .exr in a build with OpenEXR): a PNG is clamped and quantised,
  * and merging those would be biased.
+ * An output that is an input (or its stats file) or another output is
+ * refused before any work, by file identity (output_check.h), and so is a
+ * stats file beside the output that would describe another image.
  * Exit status: 0 merged, 1 an input or output failed, 2 bad usage.
  */
 #include <errno.h>
@@ -21,6 +24,7 @@
 #include "estimate.h"
 #include "image.h"
 #include "imgread.h"
+#include "output_check.h"
 #include "testlib.h"
 
 #define MAX_INPUTS 4096
@@ -29,8 +33,9 @@ struct input {
     const char *path;
     double spp; /* 0: from its stats file */
     char stats[4096]; /* its stats file, when one was found */
-    double seed; /* from the stats file; -1: unknown */
-    char what[1200]; /* its stage and scene, as the stats file writes them */
+    double *seeds; /* from the stats file: "seed", or a merge's "seeds" */
+    int n_seeds; /* 0: unknown */
+    char stage[128], scene[1024]; /* as the stats file writes them (empty: not there) */
 };
 
 struct args {
@@ -60,15 +65,23 @@ usage(FILE *f)
         "hold the same seed are refused: they are the same samples twice; so are\n"
         "inputs whose stats files name another stage or scene file.\n"
         "\n"
+        "No output may be an input, an input's stats file or another output, and\n"
+        "a stats file beside -o (OUT's name with .json, or OUT.json) must be the\n"
+        "one --stats writes: else a later merge would read it as the merged\n"
+        "image's.\n"
+        "\n"
         "  -o, --output FILE   the merged image\n"
         "  --spp N             the inputs after this option have N spp each\n"
         "  --variance FILE     also write the per-pixel variance of the merged image\n"
         "                      (2 inputs or more; for compare --variance)\n"
         "  --stats FILE        write the merged image's stats: spp (the sum), inputs,\n"
-        "                      variance_dof (inputs - 1), so merges can be merged\n"
+        "                      variance_dof (inputs - 1), the inputs' stage, scene\n"
+        "                      and seeds, so merges can be merged (and merges that\n"
+        "                      share a seed are refused)\n"
         "  -h, --help          this text\n"
         "\n"
-        "Exit status: 0 merged, 1 an input or output failed, 2 bad usage.\n",
+        "Exit status: 0 merged, 1 an input or output failed, 2 bad usage (an output\n"
+        "that is an input or another output).\n",
         f);
 }
 
@@ -114,7 +127,7 @@ parse_args(int argc, char **argv, struct args *a)
             fprintf(stderr, "merge: error: unknown option '%s'\n", s);
             return 2;
         } else if (a->n < MAX_INPUTS) {
-            a->inputs[a->n++] = (struct input){.path = s, .spp = spp, .seed = -1};
+            a->inputs[a->n++] = (struct input){.path = s, .spp = spp};
         } else {
             fprintf(stderr, "merge: error: at most %d inputs\n", MAX_INPUTS);
             return 2;
@@ -160,46 +173,149 @@ raw_json_string(const char *text, const char *key, char *out, size_t cap)
     out[n] = '\0';
 }
 
-/* Find the input's stats file and read its spp (unless given), seed, stage
- * and scene. */
+/* The numbers of the JSON array after "key": in text, as a new array
+ * (*out, free it); their count, or -1 when there is no such array of
+ * numbers or memory ran out. */
+static int
+json_numbers(const char *text, const char *key, double **out)
+{
+    char pattern[64];
+    snprintf(pattern, sizeof pattern, "\"%s\": [", key);
+    const char *p = text ? strstr(text, pattern) : NULL;
+    *out = NULL;
+    if (!p) {
+        return -1;
+    }
+    p += strlen(pattern);
+    int n = 0, cap = 0;
+    for (p += strspn(p, " \t\r\n"); *p != ']'; p += strspn(p, " \t\r\n")) {
+        char *end;
+        double v = strtod(p, &end);
+        double *grown = n < cap ? *out : realloc(*out, (size_t)(cap = 2 * cap + 8) * sizeof **out);
+        if (end == p || !grown) {
+            free(grown ? grown : *out);
+            *out = NULL;
+            return -1;
+        }
+        *out = grown;
+        (*out)[n++] = v;
+        p = end + strspn(end, " \t\r\n");
+        p += *p == ',';
+    }
+    return n;
+}
+
+/* The seeds of an input's stats file: a render's "seed", or the "seeds" a
+ * merge's stats list. */
+static void
+read_seeds(struct input *in, const char *text)
+{
+    double seed;
+    in->n_seeds = json_numbers(text, "seeds", &in->seeds);
+    if (in->n_seeds < 0 && test_json_number(in->stats, "seed", &seed)
+        && (in->seeds = malloc(sizeof *in->seeds)) != NULL) {
+        in->seeds[0] = seed;
+        in->n_seeds = 1;
+    }
+    in->n_seeds = in->n_seeds > 0 ? in->n_seeds : 0;
+}
+
+/* The stats file of the image at path, as render --stats is told to name
+ * it beside the image: the name with .json for its extension (a.json), or
+ * with .json added (a.pfm.json), looked for in that order.  False when
+ * neither is there; out then holds the first. */
+static bool
+stats_beside(const char *path, char *out, size_t cap)
+{
+    const char *dot = strrchr(path, '.');
+    const char *slash = strrchr(path, '/');
+    int stem = dot && (!slash || dot > slash) ? (int)(dot - path) : (int)strlen(path);
+    size_t n = strlen(path);
+    if (n + sizeof ".json" <= cap) {
+        memcpy(out, path, n);
+        memcpy(out + n, ".json", sizeof ".json");
+        if (test_file_exists(out)) {
+            return true;
+        }
+    }
+    snprintf(out, cap, "%.*s.json", stem, path);
+    return test_file_exists(out);
+}
+
+/* Find the input's stats file and read its spp (unless given), seeds,
+ * stage and scene. */
 static bool
 read_input_stats(struct input *in, struct diag *err)
 {
-    const char *dot = strrchr(in->path, '.');
-    const char *slash = strrchr(in->path, '/');
-    int stem = dot && (!slash || dot > slash) ? (int)(dot - in->path) : (int)strlen(in->path);
-    snprintf(in->stats, sizeof in->stats, "%.*s.json", stem, in->path);
-    if (!test_file_exists(in->stats)) {
-        snprintf(in->stats, sizeof in->stats, "%s.json", in->path);
-    }
-    if (!test_file_exists(in->stats)) {
-        in->stats[0] = '\0';
-    } else {
-        if (!test_json_number(in->stats, "seed", &in->seed)) {
-            in->seed = -1;
-        }
+    bool found = stats_beside(in->path, in->stats, sizeof in->stats);
+    if (found) {
         char *text = test_read_file(in->stats, NULL);
-        char stage[128], scene[1024];
-        raw_json_string(text, "stage", stage, sizeof stage);
-        raw_json_string(text, "scene", scene, sizeof scene);
-        /* The scene's file name only: other machines may keep it elsewhere. */
-        const char *name = strrchr(scene, '/') ? strrchr(scene, '/') + 1 : scene;
-        snprintf(in->what, sizeof in->what, "stage %s, scene %s", stage, name);
+        read_seeds(in, text);
+        raw_json_string(text, "stage", in->stage, sizeof in->stage);
+        raw_json_string(text, "scene", in->scene, sizeof in->scene);
         free(text);
     }
     if (in->spp > 0) {
         return true;
     }
-    if (!in->stats[0] || !test_json_number(in->stats, "spp", &in->spp) || !(in->spp >= 1)) {
+    if (!found || !test_json_number(in->stats, "spp", &in->spp) || !(in->spp >= 1)) {
         diag_set(
             err,
             in->path,
             0,
             0,
-            "no spp: give --spp N before it, or keep its stats file (%.*s.json)",
-            stem,
-            in->path);
+            "no spp: give --spp N before it, or keep its stats file (%s)",
+            in->stats);
         return false;
+    }
+    return true;
+}
+
+/* The scene's file name only: other machines may keep it elsewhere. */
+static const char *
+scene_name(const struct input *in)
+{
+    const char *slash = strrchr(in->scene, '/');
+    return slash ? slash + 1 : in->scene;
+}
+
+/* in and other render one image, as far as their stats files say. */
+static bool
+same_image(const struct input *in, const struct input *other, struct diag *err)
+{
+    if (in->stage[0] && other->stage[0]
+        && (strcmp(in->stage, other->stage) != 0
+            || strcmp(scene_name(in), scene_name(other)) != 0)) {
+        diag_set(
+            err,
+            in->path,
+            0,
+            0,
+            "not a render of the same image as %s (stage %s, scene %s; stage %s, scene %s)",
+            other->path,
+            in->stage,
+            scene_name(in),
+            other->stage,
+            scene_name(other));
+        return false;
+    }
+    for (int i = 0; i < in->n_seeds; i++) {
+        for (int j = 0; j < other->n_seeds; j++) {
+            if (in->seeds[i] == other->seeds[j]) {
+                diag_set(
+                    err,
+                    in->path,
+                    0,
+                    0,
+                    "holds the samples of seed %.17g, as %s does (by their stats files %s and "
+                    "%s): the same samples twice",
+                    in->seeds[i],
+                    other->path,
+                    in->stats,
+                    other->stats);
+                return false;
+            }
+        }
     }
     return true;
 }
@@ -222,28 +338,7 @@ check_inputs(struct args *a, struct diag *err)
             return false;
         }
         for (int j = 0; j < i; j++) {
-            const struct input *other = &a->inputs[j];
-            if (in->what[0] && other->what[0] && strcmp(in->what, other->what) != 0) {
-                diag_set(
-                    err,
-                    in->path,
-                    0,
-                    0,
-                    "not a render of the same image as %s (%s; %s)",
-                    other->path,
-                    in->what,
-                    other->what);
-                return false;
-            }
-            if (in->seed >= 0 && in->seed == a->inputs[j].seed) {
-                diag_set(
-                    err,
-                    in->path,
-                    0,
-                    0,
-                    "rendered with the same seed (%.0f) as %s: the same samples twice",
-                    in->seed,
-                    a->inputs[j].path);
+            if (!same_image(in, &a->inputs[j], err)) {
                 return false;
             }
         }
@@ -251,6 +346,8 @@ check_inputs(struct args *a, struct diag *err)
     return true;
 }
 
+/* The merged image's stats: what a later merge reads (spp, seeds, stage,
+ * scene: of the first input that has them) and compare's --variance-dof. */
 static bool
 write_stats(const struct args *a, double spp, int width, int height, struct diag *err)
 {
@@ -258,18 +355,88 @@ write_stats(const struct args *a, double spp, int width, int height, struct diag
     if (!atomic_file_open(&af, a->stats, err)) {
         return false;
     }
+    fputs("{\n  \"tool\": \"merge\",\n", af.f);
+    for (int i = 0; i < a->n; i++) {
+        if (a->inputs[i].stage[0]) {
+            fprintf(
+                af.f,
+                "  \"stage\": \"%s\",\n  \"scene\": \"%s\",\n",
+                a->inputs[i].stage,
+                a->inputs[i].scene);
+            break;
+        }
+    }
     fprintf(
         af.f,
-        "{\n  \"tool\": \"merge\",\n  \"width\": %d,\n  \"height\": %d,\n  \"spp\": %.17g,\n",
+        "  \"width\": %d,\n  \"height\": %d,\n  \"spp\": %.17g,\n  \"seeds\": [",
         width,
         height,
         spp);
-    fprintf(af.f, "  \"inputs\": %d,\n  \"variance_dof\": %d\n}\n", a->n, a->n - 1);
+    const char *separator = "";
+    for (int i = 0; i < a->n; i++) {
+        for (int j = 0; j < a->inputs[i].n_seeds; j++) {
+            fprintf(af.f, "%s%.17g", separator, a->inputs[i].seeds[j]);
+            separator = ", ";
+        }
+    }
+    fprintf(af.f, "],\n  \"inputs\": %d,\n  \"variance_dof\": %d\n}\n", a->n, a->n - 1);
     return atomic_file_commit(&af, err);
 }
 
-static bool
-merge(struct args *a, struct diag *err)
+/* The files merge writes, checked before any work (output_check.h): none
+ * is an input or an input's stats file, none is another, and the stats
+ * file a later merge would read beside -o is --stats (or not there): a
+ * stale one would be taken for the merged image's. */
+static int
+check_outputs(const struct args *a, struct diag *err)
+{
+    struct named_file outputs[3] = {{"-o", a->output}};
+    int n_out = 1;
+    if (a->variance) {
+        outputs[n_out++] = (struct named_file){"--variance", a->variance};
+    }
+    if (a->stats) {
+        outputs[n_out++] = (struct named_file){"--stats", a->stats};
+    }
+    struct named_file *inputs = calloc(2 * (size_t)a->n, sizeof *inputs);
+    if (!inputs) {
+        diag_set(err, NULL, 0, 0, "out of memory");
+        return 1;
+    }
+    int n_in = 0;
+    for (int i = 0; i < a->n; i++) {
+        inputs[n_in++] = (struct named_file){"the input", a->inputs[i].path};
+        if (a->inputs[i].stats[0]) {
+            inputs[n_in++] = (struct named_file){"the stats of the input", a->inputs[i].stats};
+        }
+    }
+    enum output_check verdict = output_check(outputs, n_out, inputs, n_in, err);
+    free(inputs);
+    if (verdict != OUTPUTS_OK) {
+        return verdict == OUTPUTS_CLASH ? 2 : 1;
+    }
+    char beside[4096];
+    const struct named_file stale = {"the stats file beside -o", beside};
+    if (stats_beside(a->output, beside, sizeof beside)
+        && (!a->stats || output_check(&outputs[n_out - 1], 1, &stale, 1, err) == OUTPUTS_OK)) {
+        diag_set(
+            err,
+            beside,
+            0,
+            0,
+            "beside -o %s, it would be read as the merged image's stats by a later merge: write "
+            "them there with --stats %s, or remove it",
+            a->output,
+            beside);
+        return 2;
+    }
+    return 0;
+}
+
+/* Everything merge checks before reading an image: the exit status (0:
+ * go on; err says why not). */
+static int
+check(struct args *a, struct diag *err)
 {
     if (!linear_format(a->output) || (a->variance && !linear_format(a->variance))) {
         diag_set(
@@ -278,11 +445,14 @@ merge(struct args *a, struct diag *err)
             0,
             0,
             "merge writes .pfm or .exr (linear radiance)");
-        return false;
+        return 1;
     }
-    if (!check_inputs(a, err)) {
-        return false;
-    }
+    return check_inputs(a, err) ? check_outputs(a, err) : 1;
+}
+
+static bool
+merge(struct args *a, struct diag *err)
+{
     struct image *images = calloc((size_t)a->n, sizeof *images);
     double *weights = calloc((size_t)a->n, sizeof *weights);
     struct image mean = {0}, variance = {0};
@@ -343,9 +513,11 @@ main(int argc, char **argv)
         usage(stdout);
     } else if (parsed == 2) {
         fputs(usage_line, stderr);
-    } else if (!merge(&a, &err)) {
+    } else if ((status = check(&a, &err)) != 0 || (status = merge(&a, &err) ? 0 : 1) != 0) {
         diag_print(stderr, &err, "error");
-        status = 1;
+    }
+    for (int i = 0; i < a.n; i++) {
+        free(a.inputs[i].seeds);
     }
     free(a.inputs);
     return status;
