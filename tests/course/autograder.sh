@@ -21,6 +21,7 @@
 #   controls        the lab's controls (tests/course/controls/NN_name; found
 #                   by running the untouched handout where there is none)
 #   tools/          the grading scripts: tests/lab/grade.sh and what it uses
+#   lab-total       the points: the lab's tests less its controls
 # The assignment's total in Gradescope: one point per scored test, printed
 # at the end (make grade's lab_total).
 #
@@ -83,6 +84,7 @@ with zipfile.ZipFile(sys.argv[1], "w", zipfile.ZIP_DEFLATED) as z:
 PY
 ) || die "could not write $out/autograder.zip"
 mv "$out/autograder.zip.tmp" "$out/autograder.zip"
+# The points: the lab's tests less its controls (grade-class.sh reads them too).
 total=0
 for src in $(handout_tests "$dest/handout"); do
     [ "$(test_from "$src")" = "${stage%%_*}" ] || continue
@@ -90,5 +92,6 @@ for src in $(handout_tests "$dest/handout"); do
         grep -qx "$(basename "$src" .c) $t" "$dest/controls" || total=$((total + 1))
     done
 done
+echo "$total" >"$dest/lab-total"
 echo "$PROG: wrote $out/autograder.zip (lab ${stage%%_*}, $stage): upload it in Gradescope's Configure Autograder;"
 echo "$PROG: the assignment is worth $total point(s), one per scored test ($(wc -l <"$dest/controls" | tr -d ' ') control(s) not scored)"

@@ -20,7 +20,8 @@
 #                  control's and a crashed program's tests, an earlier
 #                  stage's, a report page; quotes, backslashes, tabs and a
 #                  control character in the logs) writes JSON with
-#                  Gradescope's fields and types, the score of the report
+#                  Gradescope's fields and types (results-check.py), the
+#                  score of the report
 #   results-nobuild  the same for a stage that does not build: a failing
 #                  "build" entry with the compiler's error, score 0
 #   class-summary  class.awk on fixture results: the CSV's header and rows
@@ -35,17 +36,8 @@ COURSE_DIR=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$COURSE_DIR/../.." && pwd)
 case ${1:-} in -h | --help) awk 'NR == 1 { next } /^#/ { sub(/^# ?/, ""); print; next } { exit }' "$0"; exit 0 ;; esac
 
-passed=0
-failed=0
-skipped=0
-ok() { passed=$((passed + 1)); echo "ok   course/$1"; }
-fail() {
-    failed=$((failed + 1))
-    echo "FAIL course/$1"
-    shift
-    for d in "$@"; do printf '%s\n' "$d" | head -n 25 | sed 's/^/    /'; done
-}
-skip() { skipped=$((skipped + 1)); echo "skip course/$1"; }
+CHECKS=course
+. "$COURSE_DIR/checklib.sh"
 T=$(mktemp -d "${TMPDIR:-/tmp}/test-course.XXXXXX") || exit 2
 trap 'rm -rf "$T"' EXIT
 trap 'exit 1' HUP INT TERM
@@ -144,21 +136,11 @@ else
 fi
 
 # ---- results-json ---------------------------------------------------------------
-GS_CHECK='
-top = {"score", "execution_time", "output", "visibility", "stdout_visibility", "tests"}
-assert set(d) <= top | {"output_format", "test_output_format", "extra_data", "leaderboard"}, set(d)
-assert isinstance(d["score"], (int, float)) and isinstance(d["tests"], list)
-for t in d["tests"]:
-    assert set(t) <= {"name", "score", "max_score", "status", "output", "visibility", "output_format", "number", "tags", "extra_data", "name_format"}, t
-    assert isinstance(t["name"], str) and isinstance(t["output"], str)
-    assert isinstance(t["score"], (int, float)) and isinstance(t["max_score"], (int, float)) and t["score"] <= t["max_score"], t
-    assert t["status"] in ("passed", "failed") and t["visibility"] in ("visible", "hidden", "after_due_date", "after_published"), t
-    assert t.get("output_format", "text") in ("text", "html", "simple_format", "md", "ansi"), t
-assert d["score"] == sum(t["score"] for t in d["tests"])
-'
-awk -v report="$F/report.txt" -v keep="$F/keep" -v secs=7 -f "$COURSE_DIR/results.awk" "$F/keep/tests" \
+# (from the project's top: the report names its page from there)
+(cd "$root" && awk -v report="$F/report.txt" -v keep="$F/keep" -v secs=7 -f "$COURSE_DIR/results.awk" "$F/keep/tests") \
     >"$T/results.json" 2>"$T/results.err"
-r=$(json_check "$T/results.json" "$GS_CHECK
+r=$(python3 "$COURSE_DIR/results-check.py" "$T/results.json" 1 >/dev/null 2>&1 || python3 "$COURSE_DIR/results-check.py" "$T/results.json" 1
+json_check "$T/results.json" "
 n = {t['name']: t for t in d['tests']}
 assert d['score'] == 1 and d['execution_time'] == 7, d['score']
 assert n['02_shadows/a_passing_test']['score'] == 1 and n['02_shadows/a_failing_test']['status'] == 'failed'
@@ -181,7 +163,8 @@ printf 'render.c:3:1: error: expected ; before }\nmake: *** [x] Error 1\n' >"$T/
 printf 'lab\t02\t02_shadows\ta_failing_test\tFAIL\tdid-not-compile\n' >"$T/nobuild/tests"
 printf 'GRADE lab=02_shadows score=0.0 lab_passed=0 lab_total=1 controls=0 earlier_passed=0 earlier_total=0 build=failed\n' >"$T/nobuild/report.txt"
 awk -v report="$T/nobuild/report.txt" -v keep="$T/nobuild" -v secs=1 -f "$COURSE_DIR/results.awk" "$T/nobuild/tests" >"$T/nobuild.json"
-r=$(json_check "$T/nobuild.json" "$GS_CHECK
+r=$(python3 "$COURSE_DIR/results-check.py" "$T/nobuild.json" 0 >/dev/null 2>&1 || python3 "$COURSE_DIR/results-check.py" "$T/nobuild.json" 0
+json_check "$T/nobuild.json" "
 b = d['tests'][0]
 assert b['name'] == 'build' and b['status'] == 'failed' and 'render.c:3:1: error' in b['output'], b
 assert d['score'] == 0 and d['tests'][1]['status'] == 'failed' and 'does not build' in d['tests'][1]['output']
@@ -211,7 +194,7 @@ if [ -z "$why" ]; then ok "class-summary: the CSV's rows, the histogram, the tes
 # ---- timeout -------------------------------------------------------------------------
 W=$root/tests/harness/with-timeout.sh
 mkdir -p "$T/tmp"
-st=0; TMPDIR=$T/tmp WITH_TIMEOUT=posix "$W" 1 sleep 20 || st=$?
+st=0; TMPDIR=$T/tmp WITH_TIMEOUT=posix "$W" 1 sleep 20 2>/dev/null || st=$?
 st2=0; TMPDIR=$T/tmp WITH_TIMEOUT=posix "$W" 20 sh -c 'exit 3' || st2=$?
 st3=0; TMPDIR=$T/tmp WITH_TIMEOUT=posix "$W" 20 true || st3=$?
 if [ "$st" -eq 124 ] && [ "$st2" -eq 3 ] && [ "$st3" -eq 0 ] && [ -z "$(ls -A "$T/tmp")" ]; then
@@ -220,5 +203,4 @@ else
     fail timeout "statuses $st $st2 $st3 (expected 124 3 0); left: $(ls -A "$T/tmp")"
 fi
 
-echo "$passed passed, $failed failed, $skipped skipped"
-[ "$failed" -eq 0 ]
+finish
