@@ -21,8 +21,14 @@
 #                    ignored: the light goes to a refraction that does not
 #                    exist); a glass cube in the point-lit box against the
 #                    correct stage: glass
+#   diagonal-sampler 03 light.c: one rng_uniform for both u and v of a
+#                    point on the light (every sample on a diagonal of its
+#                    cell); a ball above a floor under a square light, 16
+#                    renders of one shadow ray against the correct stage's
+#                    1024: penumbra (and the correct stage's 16: none)
 # The grade must list the expected region first among the biased ones; and
-# the correct stage 07, rendered the same way, must have no biased region.
+# the correct stages 07 and 03, rendered the same way, must have no biased
+# region.
 # The stages 02 and 04 are deterministic, so their reference is the correct
 # stage's render (exact); stage 07 uses two renders of 64 spp with seeds 1
 # and 2 against the Mitsuba references, as make grade does (block and region t-tests,
@@ -30,8 +36,10 @@
 # every run.  The correct stage's renders are judged again at 256 spp
 # when 64 flag a region (grade_07_correct: the rare paths of caustics).
 # Builds the project first (make, a no-op when it is built).  Cost: about
-# 40 s of processor time (four stage copies built, twelve renders of 07 at
-# 64 spp, 256x256), and 45 s more when the 256-spp renders are needed.
+# 70 s of processor time (five stage copies built, twelve renders of 07 at
+# 64 spp and two of 03 with 1024 shadow rays, 256x256; 03's copy and its
+# renders about 27 s of it), and 45 s more when the 256-spp renders are
+# needed.
 # Prints one result line per check (--verbose: and every grade) and
 # "N passed, N failed, N skipped".
 # Exit status: 0 every check passed, 1 a check failed, 2 usage.
@@ -98,16 +106,19 @@ plant() {
     plain_make -C "$pl_tree/stages/$pl_stage" >"$work/log" 2>&1
 }
 
-# renders PROGRAM SCENE OUT OPTIONS...: OUT.1.pfm and OUT.2.pfm, seeds 1
-# and 2, at the references' size.
+# renders PROGRAM SCENE OUT OPTIONS...: OUT.1.pfm, OUT.2.pfm, ... seeds 1
+# to $n_renders (2 unless set), at the references' size; their names in
+# $rendered.
 renders() {
     rn_prog=$1
     rn_scene=$2
     rn_out=$3
     shift 3
-    for rn_seed in 1 2; do
+    rendered=
+    for rn_seed in $(seq 1 "${n_renders:-2}"); do
         "$rn_prog" -q -t 2 -W 256 -H 256 --seed "$rn_seed" "$@" -o "$rn_out.$rn_seed.pfm" \
             "$rn_scene" >>"$work/log" 2>&1 || return 1
+        rendered="$rendered $rn_out.$rn_seed.pfm"
     done
 }
 
@@ -185,15 +196,20 @@ grade_07_correct() {
     expect "$1" none
 }
 
-# grade_exact NAME STAGE RENDER SCENE REGION: two renders of a planted
-# deterministic stage against the correct stage's render, taken as exact.
+# grade_exact NAME STAGE RENDER SCENE REGION [OPTIONS [REFERENCE OPTIONS]]:
+# $n_renders renders (2 unless set) of a planted stage, with OPTIONS,
+# against the correct stage's render with REFERENCE OPTIONS, taken as
+# exact (a deterministic stage's; or one of many more samples).
 grade_exact() {
     ge_correct=$build/$2/render
-    if renders "$3" "$4" "$work/$1" && "$ge_correct" -q -W 256 -H 256 -o "$work/$1.ref.pfm" "$4" \
-        >>"$work/log" 2>&1 && "$build/07_pathtrace/render" -q -s 1 -W 256 -H 256 --aov feature \
-        -o "$work/$1.mask.pfm" "$4" >>"$work/log" 2>&1; then
+    # shellcheck disable=SC2086 # the options are words
+    if renders "$3" "$4" "$work/$1" ${6:-} &&
+        "$ge_correct" -q -W 256 -H 256 ${7:-} -o "$work/$1.ref.pfm" "$4" >>"$work/log" 2>&1 &&
+        "$build/07_pathtrace/render" -q -s 1 -W 256 -H 256 --aov feature \
+            -o "$work/$1.mask.pfm" "$4" >>"$work/log" 2>&1; then
+        # shellcheck disable=SC2086 # the renders' names
         "$compare" -q --ref-rel-se 0 --ref-dof 0 --regions "$work/$1.mask.feature.pfm" \
-            "$work/$1.1.pfm" "$work/$1.2.pfm" "$work/$1.ref.pfm" >"$work/grade" 2>&1 || true
+            $rendered "$work/$1.ref.pfm" >"$work/grade" 2>&1 || true
         expect "$1" "$5"
     else
         fail "$1" "a render failed"
@@ -247,6 +263,38 @@ if plant no-tir 04_reflect_refract optics.c -e 's|^\( *\)return 1;$|\1return 0;|
 else
     fail no-tir "the planted stage does not build"
 fi
+
+# A ball 0.25 above the floor under a square light: its shadow is all
+# penumbra, whose edge crosses the light at every angle, its corners too.
+# One shadow ray (16 seeds) against 1024 (their noise is 1/64 of one
+# render's variance, taken as exact).  u = v puts every sample on the
+# light's diagonal: across a corner a point sees all of that diagonal or
+# none of it (measured: 178 of 256 blocks biased, the penumbra 1.3%
+# brighter as a whole, 13 standard errors, and first; the diffuse-lit
+# floor, which sees the light at grazing angles far out, 0.29%, 9.7
+# standard errors; the correct stage: none, the penumbra 0.32 standard
+# errors).
+cat >"$work/ball.scene" <<'EOF'
+camera origin 0 1.7 0.01 target 0 0 0 up 0 0 -1 fov 70
+image width 256 height 256
+material white diffuse albedo 0.8 0.8 0.8
+material clay diffuse albedo 0.75 0.35 0.2
+quad corner -6 0 -6 edge1 0 0 12 edge2 12 0 0 material white
+sphere center 0 0.6 0 radius 0.35 material clay
+area_light corner -0.4 2 -0.4 edge1 0.8 0 0 edge2 0 0 0.8 radiance 6 6 6
+EOF
+n_renders=16
+grade_exact correct-03 03_soft_shadows "$build/03_soft_shadows/render" "$work/ball.scene" none \
+    "--shadow-samples 1" "--seed 99 --shadow-samples 1024"
+if plant diagonal-sampler 03_soft_shadows light.c \
+    -e 's|^\( *\)real u = ((real)(i % k) + rng_uniform(rng)) / (real)k;|\1real r = rng_uniform(rng);\n\1real u = ((real)(i % k) + r) / (real)k;|' \
+    -e 's|real v = ((real)(i / k) + rng_uniform(rng)) / (real)m;|real v = ((real)(i / k) + r) / (real)m;|'; then
+    grade_exact diagonal-sampler 03_soft_shadows "$work/diagonal-sampler/build/03_soft_shadows/render" \
+        "$work/ball.scene" penumbra "--shadow-samples 1" "--seed 99 --shadow-samples 1024"
+else
+    fail diagonal-sampler "the planted stage does not build"
+fi
+n_renders=2
 
 echo "$passed passed, $failed failed, 0 skipped"
 [ "$failed" -eq 0 ]
