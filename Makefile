@@ -13,7 +13,9 @@
 #   make demo       render the showcase scenes through the stages into out/ (and
 #                   the mesh scenes through the stages with a BVH)
 #   make gallery    scenes/README.md: every scene, its first correct stage and 07
-#   make config     what the build found (OpenEXR, tinygltf)
+#   make config     what the build found (OpenEXR, tinygltf, emscripten)
+#   make web        every stage in the browser: build/web/, a static page
+#                   (docs/web.md; needs emscripten's emcc)
 #   make lab STAGE=05 OUT=dir   a lab handout; make grade LAB=dir grades one
 #   make autograder STAGE=05 OUT=dir   Gradescope's autograder of a lab;
 #                   make grade-class SUBMISSIONS=dir a whole class (CSV, HTML;
@@ -69,6 +71,18 @@ config:
 	@echo "compiler:  $(CC) ($(REAL) precision)"
 	@echo "OpenEXR:   $(if $(filter 1,$(OPENEXR)),yes,no (apt-get install libopenexr-dev))"
 	@echo "tinygltf:  $(if $(filter 1,$(TINYGLTF)),yes,no (apt-get install libtinygltf-dev))"
+	@echo "emscripten: $(if $(EMCC_PATH),yes (make web),no (apt-get install emscripten, for make web))"
+
+# The browser version: every stage compiled to WebAssembly, with the page,
+# the scenes and the references, in build/web/ (common/web/, docs/web.md).
+EMCC_PATH := $(shell command -v $${EMCC:-emcc} 2>/dev/null)
+web:
+ifeq ($(EMCC_PATH),)
+	@echo "make web: needs emscripten's emcc, which is not installed: apt-get install emscripten" >&2
+	@exit 1
+else
+	@$(MAKE) --no-print-directory -C common/web
+endif
 
 DEMO_SCENES := scenes/cornell_diffuse_point.scene scenes/cornell_diffuse_area.scene \
 	scenes/cornell_specular_area.scene $(wildcard scenes/showcase*.scene)
@@ -171,7 +185,8 @@ help:
 	'make test             every test; the last line is "N passed, N failed, N skipped"' \
 	'make sanitize         the tests built with AddressSanitizer and UBSan' \
 	'make fuzz             every parser under libFuzzer for FUZZ_SECONDS each (clang)' \
-	'make config           what the build found (OpenEXR, tinygltf)' \
+	'make config           what the build found (OpenEXR, tinygltf, emscripten)' \
+	'make web              every stage in the browser: build/web/, a static page (needs emcc)' \
 	'make demo             the showcase and reference scenes through every stage into out/' \
 	'make gallery          scenes/README.md: every scene of the library, rendered (scenes/make-gallery.sh)' \
 	'make trade            speed against accuracy of every stage (docs/trade/; QUICK=1: short)' \
@@ -189,4 +204,4 @@ help:
 	'make clean            remove build/' \
 	'make help             this list'
 
-.PHONY: all models common tools test sanitize fuzz config demo gallery trade bench docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)

@@ -14,6 +14,7 @@
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "trace.h"
@@ -21,6 +22,7 @@
 #define TILE_SIZE 16
 
 static volatile sig_atomic_t stop_requested;
+static const struct render_share *share; /* NULL: the whole image */
 
 struct pass_state {
     const struct render_job *job;
@@ -38,6 +40,19 @@ struct worker {
     struct stats counts;
     pthread_t thread;
 };
+
+void
+render_set_share(const struct render_share *s)
+{
+    share = s;
+}
+
+/* Whether this process renders the tile (render_share). */
+static bool
+tile_is_ours(int tile)
+{
+    return !share || tile % share->parts == share->part;
+}
 
 void
 render_request_stop(void)
@@ -121,7 +136,9 @@ work(void *arg)
         if (tile >= ps->n_tiles) {
             break;
         }
-        render_tile(ps, tile, &counts);
+        if (tile_is_ours(tile)) {
+            render_tile(ps, tile, &counts);
+        }
         atomic_fetch_add(&ps->tiles_done, 1);
         if (ps->job->progress && pthread_mutex_trylock(&ps->draw_lock) == 0) {
             draw_progress(ps, false);
@@ -188,18 +205,37 @@ store_mean(vec3 sum, int passes, float *rgb)
 }
 
 static void
-write_mean(
-    const vec3 *sum,
-    const unsigned char *bad,
-    int passes,
-    struct image *out,
-    struct render_result *result)
+write_mean(const vec3 *sum, int passes, struct image *out)
 {
     size_t n = (size_t)out->width * (size_t)out->height;
     for (size_t i = 0; i < n; i++) {
         store_mean(sum[i], passes, &out->rgb[3 * i]);
-        result->nan_pixels += bad[i];
     }
+}
+
+static uint64_t
+count_flagged(const unsigned char *bad, size_t n)
+{
+    uint64_t count = 0;
+    for (size_t i = 0; i < n; i++) {
+        count += bad[i];
+    }
+    return count;
+}
+
+/* The share's image of this job, rendered already (render_share): copied,
+ * as if its passes had just been run. */
+static bool
+copy_rendered(const struct render_job *job, struct image *out, struct render_result *result)
+{
+    const struct image *done = share->rendered;
+    if (done->width != job->width || done->height != job->height) {
+        return false;
+    }
+    size_t floats = 3 * (size_t)job->width * (size_t)job->height;
+    memcpy(out->rgb, done->rgb, floats * sizeof *out->rgb);
+    result->passes_done = job->passes;
+    return true;
 }
 
 uint64_t
@@ -220,6 +256,9 @@ render_image(
     *result = (struct render_result){0};
     if (!image_alloc(out, job->width, job->height, err)) {
         return false;
+    }
+    if (share && share->rendered && copy_rendered(job, out, result)) {
+        return true;
     }
     size_t n = (size_t)job->width * (size_t)job->height;
     struct pass_state ps = {.job = job};
@@ -247,6 +286,10 @@ render_image(
         }
         accumulate_pass(ps.values, n, sum, bad);
         result->passes_done++;
+        if (share && share->on_pass) {
+            write_mean(sum, result->passes_done, out);
+            share->on_pass(share->ctx, out, result->passes_done);
+        }
     }
     if (thread_error) {
         diag_set(err, NULL, 0, 0, "cannot start %d threads", job->threads);
@@ -256,7 +299,8 @@ render_image(
         if (job->progress) {
             draw_progress(&ps, true);
         }
-        write_mean(sum, bad, result->passes_done, out, result);
+        write_mean(sum, result->passes_done, out);
+        result->nan_pixels = count_flagged(bad, n);
         result->interrupted = stop_requested != 0;
         result->seconds = clock_seconds() - ps.start;
         result->cpu_seconds = (double)(clock() - cpu_start) / CLOCKS_PER_SEC;

@@ -79,6 +79,26 @@ void render_pixel_traced(
     float rgb[3],
     struct render_result *result);
 
+/* A share of one image's work, for a renderer split across processes that
+ * share no memory (the browser's Web Workers, common/web/): render_image
+ * renders only the tiles t with t % parts == part and leaves the others 0,
+ * so the images of parts 0 .. parts-1 add up to the whole image, each pixel
+ * computed exactly as without a share.  After each pass, on_pass (if set)
+ * gets the mean of the passes so far.  `rendered`, when set, is this job's
+ * image already rendered by the parts together: render_image returns a copy
+ * of it instead of rendering (the pixel inspector's run, which traces one
+ * pixel and draws it over the image). */
+struct render_share {
+    int part, parts;
+    void (*on_pass)(void *ctx, const struct image *mean, int passes_done);
+    void *ctx;
+    const struct image *rendered;
+};
+
+/* Set the share of the renders that follow; NULL (the default): the whole
+ * image. */
+void render_set_share(const struct render_share *share);
+
 /* Ask a running render_image to stop after the tiles in flight; safe to
  * call from a signal handler. */
 void render_request_stop(void);
