@@ -10,7 +10,9 @@
 #ifndef GLTF_SHIM_H
 #define GLTF_SHIM_H
 
+#include <cstdarg>
 #include <cstddef>
+#include <cstdio>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -67,8 +69,20 @@ struct placed {
     mat4 world;
 };
 
-// printf into a std::string (messages are short: cut at 511 bytes).
-std::string format(const char *fmt, ...) DIAG_PRINTF(1, 2);
+// printf into a std::string (messages are short: cut at 511 bytes).  Inline:
+// every step uses it, and a helper in gltf_shim.cc, which calls the steps,
+// would make the files call each other in a circle.
+inline std::string format(const char *fmt, ...) DIAG_PRINTF(1, 2);
+inline std::string
+format(const char *fmt, ...)
+{
+    char buf[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf, sizeof buf, fmt, ap);
+    va_end(ap);
+    return buf;
+}
 
 // An allocation of ours the system refused (tinygltf's and the containers'
 // throw std::bad_alloc): gltf_load_limited catches both and marks the

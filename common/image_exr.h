@@ -1,7 +1,7 @@
 /*
  * image_exr.h - the OpenEXR encoder behind image_write(), private to
  * common/.  image_exr.c is compiled only when OpenEXR is found (HAVE_OPENEXR);
- * image.c calls it under the same #ifdef.
+ * image_write.c calls it under the same #ifdef.
  */
 #ifndef IMAGE_EXR_H
 #define IMAGE_EXR_H

@@ -10,15 +10,18 @@
  * through fail(), which fills the diagnostic at a token and returns false:
  * the first error stops the load and scene_free() releases what was built.
  *
- * The loader's files, all sharing the parser state of scene_parser.h:
+ * The loader's files, all sharing the parser state of scene_parser.h, in
+ * layers: each calls only those listed before it (tests/common/layers.sh
+ * checks that no file calls back up).
  *   scene_lexer.c      errors (fail, show) and tokens
  *   scene_fields.c     values and named fields, checked against the table
+ *   scene_store.c      the scene's arrays: growth, lights, features, scene_free()
  *   scene_materials.c  the material statement and shapes' material names
  *   scene_build.c      camera, image, colours, shapes and lights
- *   scene_mesh.c       mesh files: transforms and glTF meshes
  *   scene_gltf.c       glTF materials mapped, emitters, notes of what is dropped
+ *   scene_mesh.c       mesh files: transforms and glTF meshes
  *   scene_gltf_file.c  a glTF file as the whole scene: camera, lights
- *   scene.c            (this file) statements, scene_load(), scene_free()
+ *   scene.c            (this file) statements, scene_load(): the dispatch
  */
 #include "scene.h"
 
@@ -39,7 +42,6 @@
 
 /* --- Statements ----------------------------------------------------------- */
 
-const struct range range_positive = {.lo = 0, .hi = REAL_MAX, .lo_open = true, .text = "> 0"};
 static const struct range range_nonnegative = {.lo = 0, .hi = REAL_MAX, .text = ">= 0"};
 static const struct range range_fov =
     {.lo = 0, .hi = 180, .lo_open = true, .hi_open = true, .text = "in (0, 180) degrees"};
@@ -336,34 +338,4 @@ scene_load_string(
     struct diag *err)
 {
     return load_text(text, len, name, SCENE_DEFAULT_MAX_BYTES, out, err);
-}
-
-uint64_t
-scene_bytes(const struct scene *s)
-{
-    return (uint64_t)s->n_materials * sizeof *s->materials
-           + (uint64_t)s->n_spheres * sizeof *s->spheres + (uint64_t)s->n_quads * sizeof *s->quads
-           + (uint64_t)s->n_vertices * (sizeof *s->positions + sizeof *s->normals)
-           + (uint64_t)s->n_triangles * sizeof *s->triangles
-           + (uint64_t)s->n_point_lights * sizeof *s->point_lights
-           + (uint64_t)s->n_area_lights * sizeof *s->area_lights;
-}
-
-void
-scene_free(struct scene *s)
-{
-    free(s->materials);
-    free(s->spheres);
-    free(s->quads);
-    free(s->positions);
-    free(s->normals);
-    free(s->triangles);
-    free(s->point_lights);
-    free(s->area_lights);
-    for (int i = 0; i < s->n_input_files; i++) {
-        free(s->input_files[i]);
-    }
-    free(s->input_files);
-    free(s->sphere_lights);
-    *s = (struct scene){.width = 0};
 }

@@ -14,6 +14,9 @@
 
 #define MAX_NUMBER_CHARS 64 /* a longer token is no number anyone writes */
 
+/* The range most sizes share (radii, an index of refraction, ...). */
+const struct range range_positive = {.lo = 0, .hi = REAL_MAX, .lo_open = true, .text = "> 0"};
+
 /* --- Values --------------------------------------------------------------- */
 
 enum number_status {

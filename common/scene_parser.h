@@ -116,7 +116,7 @@ bool peek_token(struct parser *p, struct token *tok);
         .name = n, .kind = VAL_NUMBERS, .arity = count, .required = req, .range = limits \
     }
 
-extern const struct range range_positive; /* > 0 (scene.c) */
+extern const struct range range_positive; /* > 0 */
 
 /* Named fields up to the end of the line, each at most once and its values
  * in range; then every required field must have been given. */
@@ -126,7 +126,7 @@ const struct field_value *get(const struct fields *fs, const char *name);
 /* A given field of three numbers as a vec3. */
 vec3 vec_of(const struct fields *fs, const char *name);
 
-/* --- Building the scene (scene_build.c, scene_materials.c, scene_mesh.c) -- */
+/* --- The scene's arrays (scene_store.c) ---------------------------------- */
 
 /* Record that the scene uses feature f, first at kw. */
 void use_feature(struct parser *p, enum feature f, const struct token *kw);
@@ -139,6 +139,9 @@ bool room_for_mesh(struct parser *p, const struct token *at, size_t n, size_t m)
 /* Append a light and record its feature. */
 bool add_point_light(struct parser *p, const struct token *kw, struct point_light light);
 bool add_area_light(struct parser *p, const struct token *kw, struct area_light light);
+
+/* --- Building the scene (scene_build.c, scene_materials.c, scene_mesh.c) -- */
+
 /* The shape's `material` field: its index, and the feature its kind needs. */
 bool use_material(struct parser *p, const struct token *kw, const struct fields *fs, int *out);
 

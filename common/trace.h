@@ -8,10 +8,10 @@
  * ...), each call one test of the per-thread recorder pointer (stats.h:
  * st->trace), NULL in a normal render: the render loop pays nothing
  * measurable.  This header is the recorder's side: the driver's calls, the
- * writers, and the trace_log_* functions inspect.h forwards to.  With --pixel only that pixel is rendered,
- * with the samples and random numbers it gets in the full render
- * (render_pixel_traced in driver.h), so its value is the full render's bit
- * for bit.
+ * writers, and the trace_log_* functions inspect.h forwards to.  With
+ * --pixel only that pixel is rendered, with the samples and random numbers
+ * it gets in the full render (render_pixel_traced in driver.h), so its value
+ * is the full render's bit for bit.
  *
  * Events form a tree of four levels: a camera sample (0), the ray of each
  * path vertex, hit or miss (1), what the stage did at that vertex (2: a

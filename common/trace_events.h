@@ -1,6 +1,6 @@
 /*
- * trace_events.h - what the trace recorder holds (trace.h), shared by its
- * text and JSON writers (trace.c) and its SVG writer (trace_svg.c).
+ * trace_events.h - what the trace recorder (trace.c) holds, shared by its
+ * text and JSON writers (trace_write.c) and its SVG writer (trace_svg.c).
  */
 #ifndef TRACE_EVENTS_H
 #define TRACE_EVENTS_H
@@ -71,7 +71,8 @@ struct trace {
 };
 
 /* What the writers print for a primitive or a light: its statement's
- * keyword, its index among those and its line in the scene file. */
+ * keyword, its index among those and its line in the scene file
+ * (trace_write.c). */
 struct trace_name {
     const char *kind;
     int index;
