@@ -183,6 +183,7 @@ help:
 	'make tools            the command-line tools of tests/tools/ (build/tools/)' \
 	'make models           the generated 1.08M-triangle Buddha (build/models/, needs tinygltf)' \
 	'make test             every test; the last line is "N passed, N failed, N skipped"' \
+	'make test STAGE=NN    only stage NN'"'"'s tests (STAGE=03 or STAGE=03_soft_shadows; sanitize too)' \
 	'make sanitize         the tests built with AddressSanitizer and UBSan' \
 	'make fuzz             every parser under libFuzzer for FUZZ_SECONDS each (clang)' \
 	'make config           what the build found (OpenEXR, tinygltf, emscripten)' \
@@ -202,6 +203,9 @@ help:
 	'make check-labs       every check of every lab handout' \
 	'make reference-masks  tests/reference/*.feature.pfm: the reference scenes'"'"' regions, for make grade' \
 	'make clean            remove build/' \
-	'make help             this list'
+	'make help             this list' \
+	'' \
+	'Knobs, with any target: REAL=float (single precision, in build/float/: make REAL=float test),' \
+	'WERROR=1 (warnings are errors), OPENEXR=0|1, TINYGLTF=0|1, CFLAGS=... (common/config.mk)'
 
 .PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)

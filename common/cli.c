@@ -14,6 +14,7 @@
 
 #include "aov.h"
 #include "scene.h"
+#include "scene_parser.h"
 
 #define STAGELIGHT_VERSION "1.0"
 
@@ -500,6 +501,28 @@ cli_parse(
     }
     if (!opt->scene_path) {
         diag_set(err, NULL, 0, 0, "no scene given (usage: render [options] SCENE; see --help)");
+        return CLI_ERROR;
+    }
+    if (opt->camera && !scene_path_is_gltf(opt->scene_path)) {
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "--camera chooses a camera of a glTF scene (.glb, .gltf); '%s' is not one",
+            opt->scene_path);
+        return CLI_ERROR;
+    }
+    /* The passes are named after the image, which --pixel writes only
+     * with -o: without it they would land under a name nobody gave. */
+    if (opt->aov && opt->has_pixel && !opt->output) {
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "--aov with --pixel: give -o FILE, the image the passes are named after (--pixel "
+            "writes no image without it)");
         return CLI_ERROR;
     }
     return check_trace_options(opt, err) ? CLI_OK : CLI_ERROR;

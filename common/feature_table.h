@@ -40,7 +40,9 @@ unsigned features_of_stage(int number);
 
 /* One diagnostic per feature the scene uses and `modelled` lacks, located at
  * the statement that first uses it, then the scene's notes (what no stage
- * models).  Fills at most max; returns the count. */
+ * models).  Fills at most max; returns the count.  Each says what is not
+ * modelled, then, after its first "; ", what the stage does instead (under
+ * --strict, which refuses the scene, that part is left out). */
 int features_unmodelled(
     const struct scene *s,
     unsigned modelled,

@@ -63,6 +63,23 @@ run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage)
     return check_identities(run, &scene, 1);
 }
 
+/* A note says what is not modelled and, after its first "; ", what the
+ * stage does instead (feature_table.h); under --strict the stage does
+ * nothing instead, so that part is replaced by the refusal. */
+static void
+print_unmodelled(const struct diag *note, bool strict)
+{
+    if (!strict) {
+        diag_print(stderr, note, "warning");
+        return;
+    }
+    struct diag refused = *note;
+    char *instead = strstr(refused.msg, "; ");
+    size_t at = instead ? (size_t)(instead - refused.msg) : strlen(refused.msg);
+    snprintf(refused.msg + at, sizeof refused.msg - at, "; --strict refuses the scene");
+    diag_print(stderr, &refused, "error");
+}
+
 /* Say, once per feature, what this stage does not model; under --strict
  * that is an error.  Returns false when the scene is refused. */
 static bool
@@ -71,7 +88,7 @@ report_unmodelled(const struct run *run, unsigned modelled)
     struct diag notes[UNMODELLED_MAX];
     int n = features_unmodelled(&run->scene, modelled, run->stage, notes, UNMODELLED_MAX);
     for (int i = 0; i < n; i++) {
-        diag_print(stderr, &notes[i], run->opt.strict ? "error" : "warning");
+        print_unmodelled(&notes[i], run->opt.strict);
     }
     return !(run->opt.strict && n > 0);
 }

@@ -169,7 +169,8 @@ struct scene {
 
     /* What the scene asks for that no stage models, beyond the features
      * (a glTF texture, a rough metal, a spot light...): one line per kind,
-     * with the statement (or the glTF file) it comes from.  Every stage
+     * with the statement (or the glTF file) it comes from: what is not
+     * modelled, "; ", what is done instead (feature_table.h).  Every stage
      * prints them as warnings; --strict refuses the scene. */
     struct diag notes[SCENE_MAX_NOTES];
     int n_notes;

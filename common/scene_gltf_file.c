@@ -179,7 +179,7 @@ add_headlight(struct parser *p, const struct token *at, const char *file)
     scene_add_note(
         s,
         loc_of(at),
-        "%s has no lights: lit by a headlight, a point light of %g W/sr at the camera (add "
+        "%s has no lights; lit by a headlight, a point light of %g W/sr at the camera (add "
         "lights to the file to light it yourself)",
         file,
         (double)intensity);
@@ -214,7 +214,7 @@ scene_load_gltf(
     const char *file = slash ? slash + 1 : path;
     struct gltf_mesh mesh = {.n_vertices = 0};
     const struct gltf_camera *cam = NULL;
-    bool ok = load_gltf_file(&p, &at, path, path, &mesh)
+    bool ok = load_gltf_file(&p, &at, NULL, path, &mesh)
               && (cam = choose_camera(&p, &at, &mesh, camera)) != NULL && set_camera(&p, &at, cam)
               && append_file_mesh(&p, &at, file, &mesh) && add_lights(&p, &at, file, &mesh);
     if (ok && out->n_point_lights == 0 && out->n_area_lights == 0) {

@@ -91,7 +91,9 @@ char_bytes(const struct parser *p)
     return cp < min_cp[n] || cp > 0x10ffff || surrogate ? 0 : n;
 }
 
-/* Step over one character; the column counts characters, not bytes. */
+/* Step over one character; the column counts characters, not bytes.  A
+ * byte-order mark is invisible in an editor and in a message: one past the
+ * file's start (skipped there) is named, not shown. */
 static bool
 advance(struct parser *p)
 {
@@ -99,6 +101,14 @@ advance(struct parser *p)
     if (n == 0) {
         struct token at = here(p);
         return fail(p, &at, "unexpected byte 0x%02x", (unsigned char)p->src[p->pos]);
+    }
+    if (n == 3 && memcmp(p->src + p->pos, "\xEF\xBB\xBF", 3) == 0) {
+        struct token at = here(p);
+        return fail(
+            p,
+            &at,
+            "an invisible byte-order mark (U+FEFF, bytes EF BB BF) inside the file (files "
+            "joined?): only the file's first bytes may hold one; delete it");
     }
     bool tab = p->src[p->pos] == '\t';
     p->col = tab ? ((p->col - 1) / TAB_WIDTH + 1) * TAB_WIDTH + 1 : p->col + 1;

@@ -280,22 +280,26 @@ load_gltf_file(
     const char *path,
     struct gltf_mesh *out)
 {
+    char lead[300] = "";
+    if (name) {
+        snprintf(lead, sizeof lead, "cannot load mesh '%.256s': ", name);
+    }
     // Opened here first, so that a missing file reads the same with or without glTF.
     FILE *f = fopen(path, "rb");
     if (!f) {
-        return fail(p, t, "cannot load mesh '%s': cannot open: %s", name, strerror(errno));
+        return fail(p, t, "%scannot open: %s", lead, strerror(errno));
     }
     fclose(f);
     if (!gltf_available()) {
         const char *how = "this build has no glTF support: install libtinygltf-dev and rebuild";
-        return fail(p, t, "cannot load mesh '%s': %s", name, how);
+        return fail(p, t, "%s%s", lead, how);
     }
     struct diag gerr = {.line = 0};
     /* The mesh's own arrays count against what the scene has left; the
      * scene's copy of them is counted again by grow(). */
     uint64_t left = p->max_bytes > p->bytes ? p->max_bytes - p->bytes : 0;
     if (!gltf_load_limited(path, left, out, &gerr)) {
-        fail(p, t, "cannot load mesh '%s': %s", name, gerr.msg);
+        fail(p, t, "%s%s", lead, gerr.msg);
         if (gerr.kind == DIAG_NO_MEMORY) {
             diag_mark_no_memory(p->err);
         }

@@ -185,9 +185,10 @@ bool map_file_materials(
     const struct gltf_mesh *mesh,
     struct file_surface **out);
 
-/* Load the glTF file at path (named `name` in messages) into *out; the
- * files the load read besides it (external buffers, images) join the
- * scene's input_files. */
+/* Load the glTF file at path (named `name` in messages: "cannot load mesh
+ * 'NAME': ..."; NULL when the file is the scene itself, which the message's
+ * location already names) into *out; the files the load read besides it
+ * (external buffers, images) join the scene's input_files. */
 bool load_gltf_file(
     struct parser *p,
     const struct token *at,

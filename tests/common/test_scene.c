@@ -857,6 +857,19 @@ TEST(mesh_paths)
     if (!gltf_available()) {
         CHECK_MSG(strstr(err.msg, "install libtinygltf-dev and rebuild") != NULL, "%s", err.msg);
     }
+    // A glTF file that is the scene itself is no mesh of a scene: its
+    // errors name the file (the message's location) and what is wrong.
+    const char *gltf = test_tmp_path("not-a-scene.gltf");
+    CHECK(test_write_file(gltf, "not glTF"));
+    const char *const broken[] = {gltf, test_tmp_path("no-such.gltf")};
+    for (int i = 0; i < 2; i++) {
+        CHECK(!scene_load(broken[i], &s, &err));
+        CHECK_MSG(
+            strcmp(err.file, broken[i]) == 0 && !strstr(err.msg, "mesh") && err.msg[0],
+            "%s: %s",
+            err.file,
+            err.msg);
+    }
     // Scale takes 1 or 3 numbers.
     CHECK_ERROR(
         HEADER WHITE "mesh file a.glb material white scale 1 2",
@@ -1062,6 +1075,19 @@ TEST(a_leading_byte_order_mark_is_accepted)
         &err));
     CHECK_MSG(err.line == 1 && err.col == 1, "%d:%d %s", err.line, err.col, err.msg);
     CHECK(!load_text("image width 8 height 8\n\xEF\xBB\xBF", "bom.scene", &s, &err));
+    /* Named where it is, not shown (it is invisible): two files joined. */
+    CHECK(!load_text(
+        "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\n\xEF\xBB\xBFimage width 8 height 8\n",
+        "bom.scene",
+        &s,
+        &err));
+    CHECK_MSG(
+        err.line == 2 && err.col == 1 && strstr(err.msg, "U+FEFF")
+            && !strstr(err.msg, "\xEF\xBB\xBF"),
+        "%d:%d %s",
+        err.line,
+        err.col,
+        err.msg);
 }
 
 /* The camera's near plane and a sphere light, as written; the sphere light

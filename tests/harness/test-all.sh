@@ -34,6 +34,12 @@ while [ $# -gt 0 ]; do
     shift
 done
 
+# The command that ran us, for messages: make sanitize is make test with
+# SANITIZE=1 (make puts its command line's variables in our environment).
+command="make test"
+[ "${SANITIZE:-0}" = 1 ] && command="make sanitize"
+[ "${REAL:-double}" = float ] && command="make REAL=float ${command#make }"
+
 stages=
 for d in stages/[0-9][0-9]_*; do
     [ -f "$d/Makefile" ] && stages="$stages ${d#stages/}"
@@ -46,7 +52,7 @@ if [ -n "$stage" ]; then
         fi
     done
     if [ -z "$found" ]; then
-        echo "make test: unknown stage '$stage'; the stages are:" >&2
+        echo "$command: unknown stage '$stage'; the stages are:" >&2
         for s in $stages; do echo "  $s" >&2; done
         exit 2
     fi

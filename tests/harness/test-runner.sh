@@ -163,11 +163,18 @@ else
     fail stage-by-name "exit $st" "$(said)"
 fi
 mk test STAGE=99
-if [ "$st" -eq 2 ] && said | grep -q "unknown stage '99'" && said | grep -q '01_raycast' &&
+if [ "$st" -eq 2 ] && said | grep -q "^make test: unknown stage '99'" && said | grep -q '01_raycast' &&
     said | grep -q '02_fake'; then
     ok unknown-stage
 else
     fail unknown-stage "exit $st (expected 2 and the list of stages)" "$(said)"
+fi
+# The message names the command that was typed.
+mk sanitize STAGE=99
+if [ "$st" -eq 2 ] && said | grep -q "^make sanitize: unknown stage '99'"; then
+    ok unknown-stage-names-sanitize
+else
+    fail unknown-stage-names-sanitize "exit $st (expected 2, 'make sanitize: unknown stage')" "$(said)"
 fi
 
 # ---- no variable of the caller moves a stage's build -------------------------

@@ -604,6 +604,10 @@ test_help() {
     for hp_t in $(sed -n 's/^\.PHONY: *//p' "$hp_root/Makefile" | tr ' ' '\n' | grep -v '^\$'); do
         grep -q "^make $hp_t\( \|$\)" "$T/make-help" || hp_missing="$hp_missing $hp_t"
     done
+    # ... and for the knobs a user types with them.
+    for hp_k in STAGE=NN REAL=float WERROR=1; do
+        grep -q "$hp_k" "$T/make-help" || hp_missing="$hp_missing $hp_k"
+    done
     if [ -z "$hp_missing" ] && [ -s "$T/make-help" ]; then
         ok help/make-help
     else

@@ -108,6 +108,10 @@ TEST(bad_command_lines_exit_2_and_write_nothing)
         {"-t", "0", "-o", out},
         {"-W", "abc", "-o", out},
         {"--seed", "-3", "-o", out},
+        /* A glTF scene's camera, asked of a .scene file. */
+        {"--camera", "front", "-o", out},
+        /* Passes named after an image --pixel does not write without -o. */
+        {"--pixel", "3,3", "--aov", "depth", NULL},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char log[4096];
@@ -116,6 +120,9 @@ TEST(bad_command_lines_exit_2_and_write_nothing)
         CHECK(strstr(log, "error: ") != NULL);
     }
     CHECK(!test_file_exists(out));
+    CHECK(
+        !test_file_exists(test_tmp_path("small.depth.pfm"))
+        && !test_file_exists("small.depth.pfm"));
     const char *no_scene[] = {test_render_binary(), NULL};
     CHECK(test_run(no_scene, NULL, 0) == 2);
     const char *help[] = {test_render_binary(), "--help", NULL};
