@@ -449,7 +449,7 @@ format_percent(char *buf, size_t cap, const char *sign, double range)
 
 /* The legend below the map, from row y0 of out, magnification f. */
 static void
-draw_legend(struct image *out, int y0, double range, bool masked, int f)
+draw_legend(struct image *out, int y0, double range, bool masked, bool nonfinite, int f)
 {
     int margin = 6 * f, line = (GLYPH_H + 2) * f, bar_h = 10 * f;
     int x0 = margin, x1 = out->width - margin;
@@ -473,10 +473,12 @@ draw_legend(struct image *out, int y0, double range, bool masked, int f)
     int x = x0 + (GLYPH_H + 3) * f;
     draw_text(out, x, y, "FAILING BLOCK", f);
     x += text_width("FAILING BLOCK ", f) + 3 * f;
-    fill_rect(out, x, y, GLYPH_H * f, GLYPH_H * f, nonfinite_colour);
-    draw_text(out, x + (GLYPH_H + 3) * f, y, "NAN OR INF", f);
-    if (masked) {
+    if (nonfinite) {
+        fill_rect(out, x, y, GLYPH_H * f, GLYPH_H * f, nonfinite_colour);
+        draw_text(out, x + (GLYPH_H + 3) * f, y, "NAN OR INF", f);
         x += (GLYPH_H + 3) * f + text_width("NAN OR INF ", f) + 3 * f;
+    }
+    if (masked) {
         fill_rect(out, x, y, GLYPH_H * f, GLYPH_H * f, masked_colour);
         draw_text(out, x + (GLYPH_H + 3) * f, y, "NOT COMPARED", f);
     }
@@ -519,12 +521,13 @@ errmap_draw(
         return false;
     }
     fill_rect(out, 0, 0, out->width, out->height, paper);
+    bool nonfinite = false;
     for (int y = 0; y < render->height; y++) {
         for (int x = 0; x < render->width; x++) {
             bool compared = !mask || mask[(size_t)y * (size_t)render->width + (size_t)x];
-            struct rgb8 c =
-                compared ? colour_of(errmap_pixel_error(render, ref, x, y), range) : masked_colour;
-            fill_rect(out, x * s, y * s, s, s, c);
+            double e = errmap_pixel_error(render, ref, x, y);
+            nonfinite = nonfinite || (compared && !isfinite(e));
+            fill_rect(out, x * s, y * s, s, s, compared ? colour_of(e, range) : masked_colour);
         }
     }
     int thick = s >= 4 ? 2 : 1;
@@ -532,6 +535,6 @@ errmap_draw(
         const struct errmap_box *b = &boxes[i];
         outline_rect(out, b->x0 * s, b->y0 * s, b->w * s, b->h * s, thick, outline_colour);
     }
-    draw_legend(out, map_h, range, mask != NULL, f);
+    draw_legend(out, map_h, range, mask != NULL, nonfinite, f);
     return true;
 }

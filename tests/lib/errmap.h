@@ -9,10 +9,11 @@
  * agrees, red where it is brighter, saturating at -range and +range (the
  * colours of ColorBrewer's RdBu scheme, Brewer & Harrower,
  * colorbrewer2.org).  Pixels whose render or reference is NaN or infinite
- * are green; pixels left out by a mask grey.  Failing blocks are outlined
- * in black.  Below the map a
- * legend: the colour bar with its ends and centre labelled, and the key of
- * the outline and of green.  Small images are magnified by a whole factor
+ * are green (compare refuses such images: a caller that passes them);
+ * pixels left out by a mask grey.  Failing blocks are outlined in black.
+ * Below the map a legend: the colour bar with its ends and centre
+ * labelled, and the key of the outline, and of green and grey when the map
+ * has them.  Small images are magnified by a whole factor
  * so the map is at least ERRMAP_MIN_WIDTH pixels wide.
  */
 #ifndef ERRMAP_H
