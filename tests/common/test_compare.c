@@ -819,13 +819,18 @@ TEST(outputs_that_are_inputs_or_each_other_are_refused)
         "--html",
         TMP("labels.pfm"),
         NULL};
-    const char *const *cases[] = {map_ref, html_render, both, variance, regions};
+    /* The reference's noise figures beside it (none here: an empty object). */
+    CHECK(test_write_file(TMP("META.json"), "{}\n"));
+    const char *const meta[] =
+        {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), "--html", TMP("META.json"), NULL};
+    const char *const *cases[] = {map_ref, html_render, both, variance, regions, meta};
     const char *const said[] = {
         "is the reference",
         "is the render",
         "are the same file",
         "is --variance",
-        "is --regions"};
+        "is --regions",
+        "is the reference's META.json"};
     CHECK(test_tool_cases("compare", cases, said, sizeof cases / sizeof cases[0], 2));
     char *now = test_read_file(TMP("ref.pfm"), &after);
     CHECK(ref_bytes && now && before == after && memcmp(ref_bytes, now, before) == 0);

@@ -247,6 +247,14 @@ parse_args(int argc, char **argv, struct args *a)
     return 0;
 }
 
+/* The META.json in the directory of the reference at path, into out. */
+static void
+meta_beside(const char *path, char *out, size_t cap)
+{
+    const char *slash = strrchr(path, '/');
+    snprintf(out, cap, "%.*sMETA.json", (int)(slash ? slash + 1 - path : 0), path);
+}
+
 /* The reference's noise from the META.json in its directory (the format of
  * tests/reference/: an object per image name holding "p90_rel_se_pixel" and
  * "batches"), unless given on the command line.  Like the project's tests,
@@ -261,7 +269,7 @@ reference_noise_from_meta(struct comparison *c)
     const char *dot = strrchr(base, '.');
     char name[256], meta[4096];
     snprintf(name, sizeof name, "%.*s", (int)(dot ? dot - base : (long)strlen(base)), base);
-    snprintf(meta, sizeof meta, "%.*sMETA.json", (int)(base - path), path);
+    meta_beside(path, meta, sizeof meta);
     double rel_se = 0, batches = 0;
     if (pathcheck_meta_in(meta, name, "p90_rel_se_pixel", &rel_se)
         && pathcheck_meta_in(meta, name, "batches", &batches) && rel_se >= 0 && batches >= 2) {
@@ -759,7 +767,8 @@ print_regions(const struct args *a)
 static bool
 check_outputs(const struct args *a, struct diag *err)
 {
-    struct named_file outputs[2], inputs[MAX_RENDERS + 3];
+    struct named_file outputs[2], inputs[MAX_RENDERS + 4];
+    char meta[4096];
     int n_out = 0, n_in = 0;
     if (a->map_path) {
         outputs[n_out++] = (struct named_file){"--map", a->map_path};
@@ -771,6 +780,8 @@ check_outputs(const struct args *a, struct diag *err)
         inputs[n_in++] = (struct named_file){"the render", a->c.render_paths[j]};
     }
     inputs[n_in++] = (struct named_file){"the reference", a->c.reference_path};
+    meta_beside(a->c.reference_path, meta, sizeof meta);
+    inputs[n_in++] = (struct named_file){"the reference's META.json", meta};
     if (a->c.variance_path) {
         inputs[n_in++] = (struct named_file){"--variance", a->c.variance_path};
     }
