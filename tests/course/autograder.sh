@@ -50,10 +50,14 @@ command -v python3 >/dev/null 2>&1 || die "python3 is needed to write the zip (i
 mkdir -p "$out" || die "cannot write $out"
 out=$(abs_dir "$out")
 dest=$out/autograder
-rm -rf "$dest" "$out/autograder.zip"
+# (An earlier autograder's handout is updated in place, its build kept:
+# make grade-class builds it once and reruns rebuild nothing.)
+[ ! -d "$dest/handout" ] || [ "$(handout_stage "$dest/handout")" = "$stage" ] || rm -rf "$dest/handout"
+rm -rf "$dest/tools" "$dest/controls" "$dest/setup.sh" "$dest/run_autograder" "$dest/lab-total" "$out/autograder.zip"
 mkdir -p "$dest/tools/tests/lab" "$dest/tools/tests/harness" "$dest/tools/tests/course"
 
-"$LAB_DIR/make-lab.sh" --quiet --root "$root" "$stage" "$dest/handout" || die "could not write the handout of $stage"
+"$LAB_DIR/make-lab.sh" --quiet --discard-changes --root "$root" "$stage" "$dest/handout" ||
+    die "could not write the handout of $stage"
 for f in grade.sh grade.awk lablib.sh grade-pages.sh; do
     cp "$LAB_DIR/$f" "$dest/tools/tests/lab/"
 done
@@ -72,11 +76,13 @@ sed -e "s/@STAGE@/$stage/g" -e "s/@TIMEOUT@/$limit/g" "$COURSE_DIR/run_autograde
 chmod +x "$dest/setup.sh" "$dest/run_autograder"
 
 # The zip: setup.sh and run_autograder at its top, as Gradescope wants them
-# (python3's zipfile keeps the files' modes).
+# (python3's zipfile keeps the files' modes); no build.
 (cd "$dest" && python3 - "$out/autograder.zip.tmp" <<'PY'
 import os, sys, zipfile
 with zipfile.ZipFile(sys.argv[1], "w", zipfile.ZIP_DEFLATED) as z:
     for top, dirs, files in os.walk("."):
+        if top == "./handout":
+            dirs[:] = [d for d in dirs if d not in ("build", "grade")]
         dirs.sort()
         for f in sorted(files):
             path = os.path.join(top, f)[2:]

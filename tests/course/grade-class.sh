@@ -167,10 +167,12 @@ handout_build "$out/autograder/handout" "$out/handout-build.log" lab -j"$jobs" |
     die "the untouched handout does not build (log: $out/handout-build.log)"
 cp "$out/autograder/lab-total" "$out/lab-total"
 # A result stands for the submission's files under this lab as it is now.
+# (lab-key.files: what it sums, to tell why a rerun grades everything again)
 {
     (cd "$out/autograder" && find . -path ./handout/build -prune -o -type f -print | LC_ALL=C sort | xargs cksum)
     echo "$limit"
-} | cksum | awk '{ print $1 }' >"$out/lab-key"
+} >"$out/lab-key.files"
+cksum <"$out/lab-key.files" | awk '{ print $1 }' >"$out/lab-key"
 
 # ---- the tasks: every submission without a result for its files now --------
 : >"$out/tasks"
