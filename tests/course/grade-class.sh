@@ -5,9 +5,12 @@
 #
 # SUBMISSIONS holds one directory per student, named after the student,
 # each a student's handout (a clone of its repository) or the stage's files
-# alone.  Each is graded as make grade grades a handout: its stages/NN_name/
+# alone.  Each is graded by the lab's Gradescope autograder (make
+# autograder, written into OUT/autograder/ and built once): its
+# run_autograder grades as make grade does, the student's stages/NN_name/
 # in a fresh copy of the untouched handout, with the project's tests, the
-# lab's controls listed and not scored (tests/course/controls/NN_name).
+# lab's controls listed and not scored (tests/course/controls/NN_name), so
+# a class's grades and results.json are Gradescope's.
 # Writes into OUT:
 #   grades.csv    one row per student: student, score (%), lab_passed,
 #                 lab_total, build (ok, tests-partly, failed, not-graded),
@@ -19,8 +22,9 @@
 #   index.html    the class at a glance: the histogram of the scores, the
 #                 tests most failed, and per student the score, the reason
 #                 and links to the report and its compare pages
-#   students/NAME/  report.txt (make grade's report), pages/ (its compare
-#                 report pages), result (the row, written last), keep/
+#   students/NAME/  results/results.json (Gradescope's), report.txt (make
+#                 grade's report), pages/ (its compare report pages), keep/
+#                 (what the grading read), result (the row, written last)
 # Nothing is lost when a grading dies: a student's result is written last,
 # under a key of the submission's files and of the lab, and a rerun grades
 # only the students without a result for their files as they are now (so
