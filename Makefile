@@ -125,6 +125,18 @@ trade: all
 bench: all
 	@$(MAKE) --no-print-directory -C tests/bench run
 
+# How often each verdict a learner sees calls correct work biased, and how
+# often it finds planted biases -> docs/calibration/ (tests/calibrate/).
+# CALIBRATE_FLAGS: the script's options, e.g. --size 256 --sets 50.
+calibrate: all
+	@tests/calibrate/calibrate.sh $(CALIBRATE_FLAGS)
+
+# The statistical stage tests under SEEDS other seeds each (TESTING.md):
+# a line per test program: "PROGRAM RUNS FAILED_RUNS SECONDS".
+SEEDS ?= 20
+test-seeds: all
+	@tests/calibrate/seed-offsets.sh $(SEEDS)
+
 # The lessons' pictures (docs/images/), rendered by the stages.
 docs-images: all
 	@docs/make-images.sh
@@ -192,6 +204,8 @@ help:
 	'make gallery          scenes/README.md: every scene of the library, rendered (scenes/make-gallery.sh)' \
 	'make trade            speed against accuracy of every stage (docs/trade/; QUICK=1: short)' \
 	'make bench            BVH build and trace rates, against brute force and Embree' \
+	'make calibrate        false-alarm and detection rates of every verdict (docs/calibration/)' \
+	'make test-seeds       the statistical stage tests under SEEDS (20) other seeds: failure rates' \
 	'make docs-images      the lessons'"'"' pictures (docs/images/)' \
 	'make lab STAGE=NN OUT=dir   a lab handout (SOLUTION=1 the instructor'"'"'s; FORCE=1 moves a changed one aside)' \
 	'make grade LAB=dir    build a handout, run its tests, score them' \
@@ -208,4 +222,4 @@ help:
 	'Knobs, with any target: REAL=float (single precision, in build/float/: make REAL=float test),' \
 	'WERROR=1 (warnings are errors), OPENEXR=0|1, TINYGLTF=0|1, CFLAGS=... (common/config.mk)'
 
-.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate test-seeds docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)

@@ -62,14 +62,6 @@ refs=$root/tests/reference
 work=$(mktemp -d "${TMPDIR:-/tmp}/planted.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 trap 'exit 1' HUP INT TERM
-# plain_make ARGS...: make of the plain build, whatever variant called us
-# (make sanitize or REAL=float pass theirs in MAKEFLAGS and, being set on
-# the command line, in the environment: none of them here, where the copies
-# link build/common).
-plain_make() {
-    env -u SANITIZE -u REAL -u FUZZ -u BUILDROOT -u VARIANT MAKEFLAGS= \
-        ${MAKE:-make} --no-print-directory "$@"
-}
 plain_make -C "$root" all >"$work/log" 2>&1 ||
     die "the project does not build: $(tail -n 5 "$work/log")"
 
@@ -86,24 +78,11 @@ fail() {
 }
 
 # plant NAME STAGE FILE SED-ARGS...: the stage's copy with the bug, built
-# into $work/NAME/build/STAGE/render against the project's common core
-# (the copy's build/common is the project's, already built).
+# into $work/NAME/build/STAGE/render (lablib.sh's plant_stage).
 plant() {
-    pl_tree=$work/$1
-    pl_stage=$2
-    pl_file=$3
-    shift 3
-    mkdir -p "$pl_tree/stages" "$pl_tree/build"
-    ln -s "$root/common" "$pl_tree/common"
-    ln -s "$build/common" "$pl_tree/build/common"
-    cp -R "$root/stages/$pl_stage" "$pl_tree/stages/$pl_stage"
-    sed "$@" "$root/stages/$pl_stage/$pl_file" >"$pl_tree/stages/$pl_stage/$pl_file"
-    if cmp -s "$root/stages/$pl_stage/$pl_file" "$pl_tree/stages/$pl_stage/$pl_file"; then
-        echo "the planted change to stages/$pl_stage/$pl_file matches nothing (the source changed?)" \
-            >"$work/log"
-        return 1
-    fi
-    plain_make -C "$pl_tree/stages/$pl_stage" >"$work/log" 2>&1
+    pl_name=$1
+    shift
+    plant_stage "$root" "$work/$pl_name" "$@" >"$work/log" 2>&1
 }
 
 # renders PROGRAM SCENE OUT OPTIONS...: OUT.1.pfm, OUT.2.pfm, ... seeds 1

@@ -39,6 +39,9 @@
 #                  test programs' logs (NAME.log), the build's (build.log),
 #                  and how each TEST() counted (tests: grade.awk's tests=)
 #                  (for the course tools, tests/course/)
+#   --lab-only     build and run only the lab's own tests, not the earlier
+#                  stages' (check-labs grades the solution so: make test
+#                  runs the earlier tests on the same code)
 #   --timeout SEC  time limit of one test program (default 300; 0: none)
 #   --jobs N       parallel make jobs (default: the number of processors)
 #   --root DIR     the project, for --pristine and the controls (default:
@@ -53,6 +56,7 @@ LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 
 root=$(cd "$LAB_DIR/../.." && pwd)
 pristine=0
+lab_only=0
 pages=
 no_pages=0
 controls=
@@ -60,7 +64,7 @@ save_controls=
 keep=
 limit=300
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
-parse_options '--pristine pristine=1 --no-pages no_pages=1 --pages pages=VALUE --controls controls=VALUE
+parse_options '--pristine pristine=1 --lab-only lab_only=1 --no-pages no_pages=1 --pages pages=VALUE --controls controls=VALUE
     --save-controls save_controls=VALUE --keep keep=VALUE --timeout limit=VALUE --jobs jobs=VALUE --root root=DIR' "$@"
 shift "$po_used"
 [ $# -eq 1 ] || usage_error "expected one handout directory, got $# argument(s)"
@@ -133,7 +137,9 @@ fi
 # No program of an earlier build may stand in for one that does not build now.
 rm -rf "$dir/build/tests/$stage" "$dir/build/$stage/render"
 build=ok
-if ! handout_build "$dir" "$work/build.log" all -j"$jobs"; then
+programs=all
+[ "$lab_only" -eq 0 ] || programs=lab
+if ! handout_build "$dir" "$work/build.log" "$programs" -j"$jobs"; then
     if lab_make -C "$dir" -j"$jobs" all >/dev/null 2>&1; then
         build=tests-partly
         echo "note: some test programs do not compile against this stage (they score 0):"
@@ -149,6 +155,7 @@ awk '{ printf "C\t%s\t%s\n", $1, $2 }' "$work/controls" >"$work/records"
 for src in $(handout_tests "$dir"); do
     name=$(basename "$src" .c)
     from=$(test_from "$src")
+    [ "$lab_only" -eq 0 ] || [ "$from" = "$nn" ] || continue
     set -- $(run_handout_test "$dir" "$src" "$work/$name.log" "$limit")
     printf 'P\t%s\t%s\t%s\n' "$from" "$name" "$5" >>"$work/records"
     test_statuses "$src" "$work/$name.log" "$5" |

@@ -317,3 +317,44 @@ handout_differences() {
         cmp -s "$1/$hd_f" "$2/$hd_f" 2>/dev/null || echo "$hd_f"
     done
 }
+
+# page_alpha N - the family level of one of N noise-tested report pages of
+# make grade (grade-pages.sh): Sidak's 1 - (1 - 0.01)^(1/N), so that one
+# run of make grade on correct work says "biased" on any page with
+# probability at most 0.01 (docs/calibration/README.md measures it).
+page_alpha() {
+    awk -v n="$1" 'BEGIN { printf "%.6g\n", 1 - exp(log(1 - 0.01) / n) }'
+}
+
+# plain_make ARGS... - make of the project's plain build, whatever variant
+# called us (make sanitize or REAL=float pass theirs in MAKEFLAGS and,
+# being set on the command line, in the environment: none of them here,
+# where planted copies link build/common).
+plain_make() {
+    env -u SANITIZE -u REAL -u FUZZ -u BUILDROOT -u VARIANT MAKEFLAGS= \
+        ${MAKE:-make} --no-print-directory "$@"
+}
+
+# plant_stage ROOT TREE STAGE FILE SED-ARGS... - a copy of ROOT's STAGE in
+# TREE with a bug planted in FILE (sed SED-ARGS), built into
+# TREE/build/STAGE/render against ROOT's common core (built already).
+# Fails, saying so, when the sed changes nothing (the source moved on);
+# make's output goes to standard output.
+plant_stage() {
+    ps_root=$1
+    ps_tree=$2
+    ps_stage=$3
+    ps_file=$4
+    shift 4
+    rm -rf "$ps_tree/stages/$ps_stage"
+    mkdir -p "$ps_tree/stages" "$ps_tree/build"
+    [ -e "$ps_tree/common" ] || ln -s "$ps_root/common" "$ps_tree/common"
+    [ -e "$ps_tree/build/common" ] || ln -s "$ps_root/build/common" "$ps_tree/build/common"
+    cp -R "$ps_root/stages/$ps_stage" "$ps_tree/stages/$ps_stage"
+    sed "$@" "$ps_root/stages/$ps_stage/$ps_file" >"$ps_tree/stages/$ps_stage/$ps_file"
+    if cmp -s "$ps_root/stages/$ps_stage/$ps_file" "$ps_tree/stages/$ps_stage/$ps_file"; then
+        echo "the planted change to stages/$ps_stage/$ps_file matches nothing (the source changed?)"
+        return 1
+    fi
+    plain_make -C "$ps_tree/stages/$ps_stage"
+}

@@ -81,6 +81,12 @@ extern const char compare_bias_hint[];
  * not explained by paths the samples missed. */
 bool compare_bias_hint_applies(const struct comparison *c);
 
+/* What a verdict's false-alarm rate is: the family level every test of the
+ * comparison shares, what make calibrate measured at make grade's settings
+ * (docs/calibration/README.md), and what to do about a "biased" one doubts.
+ * Empty when the comparison has no noise (no statistical test). */
+void compare_format_alarms(char *buf, size_t cap, const struct comparison *c);
+
 /* "render R G B, reference R G B": the means of both images, per channel. */
 void compare_format_means(char *buf, size_t cap, const struct metrics *m, const char *separator);
 

@@ -161,7 +161,11 @@ bool metrics_block_stats(
  * degrees of freedom from pixel_dof per pixel (0: exact variances).  Far
  * more powerful than the spread of K block means when K is small: two
  * renders give one degree of freedom per block there, but hundreds here.
- * out->k is 1. */
+ * A block's var_mean is at least what the mean per-pixel variance of the
+ * 3x3 blocks around it gives: where rare bright paths (caustics) carry
+ * light, renders that missed them look darker and less noisy at once,
+ * and the block's own variance alone would accuse correct code
+ * (metrics.c, docs/calibration/README.md).  out->k is 1. */
 bool metrics_block_stats_variance(
     const struct image *render,
     const struct image *variance,

@@ -42,7 +42,8 @@
 /* The first seed of a program's renders: the environment variable
  * PATHCHECK_SEED when set (to rerun the statistical tests with other seeds
  * and see that they fail about as often as alpha says: TESTING.md,
- * "make test-seeds"), else `fallback`.  Printed once. */
+ * make test-seeds, make calibrate --seed-offsets N), else `fallback`.
+ * Printed once. */
 uint64_t pathcheck_seed(uint64_t fallback);
 
 /* Render `scene` with `args` (NULL-terminated, may be NULL) plus --seed and

@@ -56,7 +56,7 @@ struct region_report {
     struct region_result regions[REGIONS_MAX]; /* the regions present, by label */
     int n_regions;
     int n_tests; /* in the family (3 per region and per block of a region) */
-    double level; /* the Sidak-corrected level of one test */
+    double level; /* the Sidak-corrected level of one test (of n_tests + other_tests) */
     bool noise; /* tested against noise (else against max_relmse) */
     double max_relmse; /* without noise: the limit (0: none, nothing judged) */
 };
@@ -71,6 +71,8 @@ struct region_inputs {
     const unsigned char *mask; /* pixels compared (NULL: all) */
     int block_size;
     double alpha; /* family level */
+    int other_tests; /* tests of the same family outside the regions (compare's
+                      * block tests): all share alpha, Sidak-corrected */
     double max_relmse; /* without noise: a region above it is biased (0: none is) */
 };
 

@@ -17,9 +17,11 @@
  *    stats files) into an image that equals, within noise, one render of
  *    SPP samples (block t-tests of their difference), and that passes
  *    compare's block tests against the reference given merge's variance.
- * All renders are SIZE x SIZE with fixed seeds: the outcome is the same on
- * every run (the statistical level says how rarely a correct renderer would
- * fail it: alpha = 0.01 per comparison).
+ * All renders are SIZE x SIZE with fixed seeds, offset by PATHCHECK_SEED
+ * when it is set (pathcheck.h): the outcome is the same on every run, and
+ * the statistical level says how rarely a correct renderer fails it at
+ * another seed (alpha = 0.01 per comparison; make calibrate runs it at 50
+ * offsets: docs/calibration/README.md).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -81,9 +83,9 @@ render_to(const struct case_ *c, int spp, int seed, const char *path)
     if (test_file_exists(path)) {
         return true;
     }
-    char spp_text[16], seed_text[16], stats[4096];
+    char spp_text[16], seed_text[32], stats[4096];
     snprintf(spp_text, sizeof spp_text, "%d", spp);
-    snprintf(seed_text, sizeof seed_text, "%d", seed);
+    snprintf(seed_text, sizeof seed_text, "%llu", (unsigned long long)pathcheck_seed(0) + (unsigned)seed);
     snprintf(stats, sizeof stats, "%.*s.json", (int)(strlen(path) - 4), path);
     /* The independent sampler: the merge test takes one render of SPP
      * samples to have the variance of MERGE_K renders of SPP / MERGE_K

@@ -445,9 +445,10 @@ by_significance(const void *a, const void *b)
     return (pa > pb) - (pa < pb);
 }
 
-/* The block tests and the list of failing blocks. */
+/* The block tests and the list of failing blocks; other_tests more tests
+ * (the regions') share the family level alpha with them. */
 static bool
-test_blocks(struct comparison *c, struct diag *err)
+test_blocks(struct comparison *c, int other_tests, struct diag *err)
 {
     /* A block mean of n independent pixels has 1/sqrt(n) of their relative
      * SE (taken for a whole block; edge blocks are smaller). */
@@ -466,7 +467,7 @@ test_blocks(struct comparison *c, struct diag *err)
             err)) {
         return false;
     }
-    c->level = stattest_sidak(c->alpha, 3.0 * c->blocks.n_blocks);
+    c->level = stattest_sidak(c->alpha, 3.0 * c->blocks.n_blocks + other_tests);
     c->failing = malloc((size_t)c->blocks.n_blocks * sizeof *c->failing);
     if (!c->failing) {
         diag_set(err, NULL, 0, 0, "out of memory");
@@ -653,6 +654,11 @@ print_text(const struct comparison *c)
     if (compare_bias_hint_applies(c)) {
         print_wrapped("hint       ", compare_bias_hint);
     }
+    char alarms[1024];
+    compare_format_alarms(alarms, sizeof alarms, c);
+    if (alarms[0]) {
+        print_wrapped("alarms     ", alarms);
+    }
 }
 
 /* The error map of c (failing blocks outlined) into map. */
@@ -673,11 +679,16 @@ draw_map(const struct comparison *c, double range, struct image *map, struct dia
     return ok;
 }
 
-/* --regions: the error of each region of the feature pass. */
+/* --regions: the error of each region of the feature pass; its tests are
+ * one family with the block tests, whose number they are told. */
 static bool
 compare_regions(struct args *a, struct diag *err)
 {
     struct comparison *c = &a->c;
+    int bs = c->block_size;
+    int block_tests = c->noise == NOISE_NONE ? 0
+                                             : 3 * ((c->render.width + bs - 1) / bs)
+                                                   * ((c->render.height + bs - 1) / bs);
     struct image labels = {0};
     /* An EXR written with --aov holds the pass as its layer "feature". */
     bool layered = image_format_from_path(a->regions_path) == IMAGE_FORMAT_EXR;
@@ -696,6 +707,7 @@ compare_regions(struct args *a, struct diag *err)
         .mask = c->mask,
         .block_size = c->block_size,
         .alpha = c->alpha,
+        .other_tests = block_tests,
         .max_relmse = c->max_relmse,
     };
     bool ok = regions_compare(&in, &a->regions, err);
@@ -813,10 +825,10 @@ run(struct args *a, struct diag *err)
     if (!metrics_compare(&c->render, &c->reference, c->mask, &c->m, err)) {
         return false;
     }
-    if (c->noise != NOISE_NONE && !test_blocks(c, err)) {
+    if (a->regions_path && !compare_regions(a, err)) {
         return false;
     }
-    if (a->regions_path && !compare_regions(a, err)) {
+    if (c->noise != NOISE_NONE && !test_blocks(c, a->regions_path ? a->regions.n_tests : 0, err)) {
         return false;
     }
     find_worst(c);

@@ -1,0 +1,390 @@
+#!/bin/sh
+# calibrate.sh - how often each verdict a learner sees says "biased" on
+# correct work, and how often it finds a planted bias (make calibrate).
+#
+#   calibrate.sh [options]
+#
+# For every reference scene (tests/reference/NAME_gi.pfm, scenes/NAME.scene)
+# renders a pool of correct stage-07 renders, SETS independent sets of them
+# (seeds never shared between the sets of one verdict), and runs on each
+# set the verdicts at their default settings:
+#   compare-2     compare R1 R2 REF (block t-tests, alpha 0.01)
+#   compare-4     compare R1 R2 R3 R4 REF (SETS/2 sets: the pairs' renders
+#                 four at a time, to spare the processor)
+#   regions       compare --regions MASK R1 R2 REF: blocks and regions, one
+#                 family (what check-planted's controls and compare --regions run)
+#   grade-page    the same at the level of one make grade page (grade-pages.sh:
+#                 the family alpha shared by the lab's pages)
+#   grade         one run of make grade's pages: every scene's page of set i;
+#                 "biased" when any page is
+#   control       check-planted's control: regions, and when it flags a
+#                 region, again with 4x the spp (two fresh renders)
+# A verdict is "biased" when compare exits 1.  The same pool, with a bias
+# planted into the renders' images (imgedit --scale: 1%, 2% and 5% in a
+# 32x32 rectangle at a random place, 0.5% over the whole image), measures
+# how often compare-2 and grade-page find it; and BUG_SETS pairs of renders
+# of stage 07 with a bug planted in its code (check-planted's plant_stage):
+#   missing-cosine  a shadow ray's estimate without the receiver's cosine
+#   light-pdf       the area light's pdf 10% too high (its light 9% dark)
+#   leak            shadow rays start 0.05 along their way (past blockers)
+# are judged the same way.  Optionally (--seed-offsets N) each statistical
+# stage test runs under N values of PATHCHECK_SEED, counting its failures.
+#
+# Renders are SIZE x SIZE (the references are box-filtered down to it:
+# imgedit --downsample, exact for box pixel filters; their META.json
+# noise scaled with them; the feature masks rendered at that size).  The
+# pool is kept in build/calibrate/ under a key of the render program and
+# settings, so a second run with the same build only runs the verdicts.
+# Writes OUT/calibration.csv, OUT/calibration.svg (rate of "biased" against
+# the planted bias) and the table between the markers of OUT/README.md:
+# rates with Wilson 95% intervals, renders, processor seconds.
+#
+# Options:
+#   --size N          image size (default 64; the grade's is 256)
+#   --spp N           samples per pixel of one render (default 64: the grade's)
+#   --sets N          independent sets per verdict (default 200)
+#   --bug-sets N      pairs per planted code bug and scene (default 20)
+#   --scenes LIST     comma-separated reference scenes (default: all)
+#   --verdicts LIST   comma-separated (default: all of those above)
+#   --seed-offsets N  run the statistical stage tests N times (default 0)
+#   --out DIR         where the table and plot go (default docs/calibration)
+#   --threads N       render threads (default 2)
+#   --tools DIR       the compare and imgedit to judge with (default
+#                     build/tools; e.g. an older build, on the same pool)
+#   --render PROGRAM  the correct stage 07 to render with (default
+#                     build/07_pathtrace/render; its pool is kept by its key)
+#   --help
+# Exit status: 0 written, 1 a render or a tool failed, 2 usage.
+set -eu
+
+PROG=calibrate.sh
+LAB_DIR=$(cd "$(dirname "$0")/../lab" && pwd)
+. "$LAB_DIR/lablib.sh"
+root=$(cd "$LAB_DIR/../.." && pwd)
+
+size=64
+spp=64
+sets=200
+bug_sets=20
+scenes=
+verdicts=compare-2,compare-4,regions,grade-page,grade,control
+seed_offsets=0
+out=$root/docs/calibration
+threads=2
+tools=
+render=
+parse_options "--size size=VALUE --spp spp=VALUE --sets sets=VALUE --bug-sets bug_sets=VALUE
+    --scenes scenes=VALUE --verdicts verdicts=VALUE --seed-offsets seed_offsets=VALUE
+    --out out=VALUE --threads threads=VALUE --tools tools=DIR --render render=VALUE" "$@"
+shift "$po_used"
+[ $# -eq 0 ] || usage_error "unexpected argument: $1"
+scenes=$(echo "$scenes" | tr ',' ' ')
+for n in "$size" "$spp" "$sets" "$bug_sets" "$seed_offsets" "$threads"; do
+    case $n in '' | *[!0-9]*) usage_error "expected a whole number, got '$n'" ;; esac
+done
+[ $((256 % size)) -eq 0 ] || usage_error "--size must divide 256 (the references' size), got $size"
+
+build=$root/build
+render=${render:-$build/07_pathtrace/render}
+compare=${tools:-$build/tools}/compare
+imgedit=${tools:-$build/tools}/imgedit
+refs=$root/tests/reference
+for tool in "$render" "$compare" "$imgedit"; do
+    [ -x "$tool" ] || die "no $tool: run make first"
+done
+[ -n "$scenes" ] || scenes=$(ls "$refs" | sed -n 's/_gi\.pfm$//p')
+key=$(cat "$render" | cksum | cut -d' ' -f1)
+cal=$build/calibrate
+pool=$cal/pool-$key-$size-$spp
+mkdir -p "$pool" "$out"
+work=$(mktemp -d "${TMPDIR:-/tmp}/calibrate.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+trap 'exit 1' HUP INT TERM
+csv=$work/calibration.csv
+# The run's own copies of the tools: a rebuild during a long run does not
+# mix two versions of the statistics into one table.
+cp "$compare" "$imgedit" "$work/"
+compare=$work/compare
+imgedit=$work/imgedit
+echo "verdict,scene,bias,bias_pct,sets,biased,rate,low,high,renders,seconds" >"$csv"
+
+# The family level of one make grade page: the lab's noise-tested pages
+# share alpha (grade-pages.sh).
+page_alpha=$(page_alpha 3)
+
+# ---- references at the calibration size -------------------------------------
+# ref_of SCENE, mask_of SCENE: the reference and feature mask at $size.
+ref_of() { echo "$pool/refs/${1}_gi.pfm"; }
+mask_of() { echo "$pool/refs/$1.feature.pfm"; }
+make_refs() {
+    mkdir -p "$pool/refs"
+    factor=$((256 / size))
+    meta=$pool/refs/META.json
+    echo '{ "images": {' >"$meta.tmp"
+    sep=
+    for scene in $scenes; do
+        if [ "$size" -eq 256 ]; then
+            cp "$refs/${scene}_gi.pfm" "$(ref_of "$scene")"
+            cp "$refs/$scene.feature.pfm" "$(mask_of "$scene")"
+        else
+            "$imgedit" --downsample "$factor" "$refs/${scene}_gi.pfm" "$(ref_of "$scene")" ||
+                die "cannot downsample $scene's reference"
+            "$render" -q -s 1 -t "$threads" -W "$size" -H "$size" --aov feature \
+                -o "$work/mask.pfm" "$root/scenes/$scene.scene" >/dev/null ||
+                die "stage 07 cannot render $scene's feature pass"
+            mv "$work/mask.feature.pfm" "$(mask_of "$scene")"
+        fi
+        # The reference's noise per pixel falls with the pixels averaged.
+        rel=$(awk -v s="\"${scene}_gi\"" -v f="$factor" '
+            index($0, s) { on = 1 }
+            on && /"p90_rel_se_pixel"/ { gsub(/[^0-9.eE+-]/, "", $2); print $2 / f; exit }' FS=: "$refs/META.json")
+        batches=$(awk -v s="\"${scene}_gi\"" '
+            index($0, s) { on = 1 }
+            on && /"batches"/ { gsub(/[^0-9]/, "", $2); print $2; exit }' FS=: "$refs/META.json")
+        printf '%s "%s_gi": { "p90_rel_se_pixel": %s, "batches": %s }\n' "$sep" "$scene" "$rel" "$batches" >>"$meta.tmp"
+        sep=,
+    done
+    echo '} }' >>"$meta.tmp"
+    mv "$meta.tmp" "$meta"
+}
+
+# ---- renders ----------------------------------------------------------------
+# render_one PROGRAM SCENE SPP SEED OUT: one render and its processor
+# seconds appended to OUT's directory's seconds file.
+render_one() {
+    "$1" -q -t "$threads" -W "$size" -H "$size" --spp "$3" --seed "$4" --stats "$work/stats.json" \
+        -o "$5.tmp.pfm" "$root/scenes/$2.scene" >"$work/render.log" 2>&1 ||
+        die "render failed: $1 $2 seed $4: $(head -n 3 "$work/render.log")"
+    mv "$5.tmp.pfm" "$5"
+    sed -n 's/.*"seconds_render_cpu": *\([0-9.eE+-]*\).*/\1/p' "$work/stats.json" >>"$(dirname "$5")/seconds"
+}
+
+# pool_renders PROGRAM DIR SCENE SPP FIRST COUNT: seeds FIRST.. in DIR.
+pool_renders() {
+    mkdir -p "$2"
+    pr_i=0
+    while [ "$pr_i" -lt "$6" ]; do
+        pr_seed=$(($5 + pr_i))
+        [ -f "$2/$pr_seed.pfm" ] || render_one "$1" "$3" "$4" "$pr_seed" "$2/$pr_seed.pfm"
+        pr_i=$((pr_i + 1))
+    done
+}
+
+# seconds_per_render DIR: the mean processor seconds of DIR's renders.
+seconds_per_render() {
+    awk '{ s += $1; n++ } END { printf "%.4g", n ? s / n : 0 }' "$1/seconds"
+}
+
+# Seeds: set i of k renders uses seeds BASE + k i .. BASE + k i + k - 1;
+# far from the tests' seeds (1-10000).
+BASE=100000
+
+# ---- tallies ----------------------------------------------------------------
+# tally VERDICT SCENE BIAS PCT SETS BIASED RENDERS SECONDS: a CSV row with
+# the rate and its Wilson 95% interval (Wilson, JASA 22, 1927).
+tally() {
+    awk -v v="$1" -v sc="$2" -v b="$3" -v pct="$4" -v n="$5" -v k="$6" -v r="$7" -v s="$8" 'BEGIN {
+        z = 1.959964; p = k / n
+        c = (p + z * z / (2 * n)) / (1 + z * z / n)
+        h = z / (1 + z * z / n) * sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+        lo = c - h; hi = c + h; if (lo < 0 || k == 0) lo = 0; if (hi > 1 || k == n) hi = 1
+        printf "%s,%s,%s,%s,%d,%d,%.4f,%.4f,%.4f,%d,%.1f\n", v, sc, b, pct, n, k, p, lo, hi, r, s
+    }' >>"$csv"
+}
+
+has_verdict() {
+    case ",$verdicts," in *",$1,"*) return 0 ;; esac
+    return 1
+}
+
+# judge OUTFILE COMPARE-ARGS...: "1" when compare calls it biased, else "0";
+# exit 2 (bad input) stops the run.
+judge() {
+    jd_out=$1
+    shift
+    jd_status=0
+    "$compare" -q "$@" >"$work/verdict" 2>&1 || jd_status=$?
+    [ "$jd_status" -le 1 ] || die "compare failed: $(cat "$work/verdict")"
+    echo "$jd_status" >>"$jd_out"
+}
+
+# plant_rect SET: "X,Y,32,32", a random rectangle of the image for set i
+# (the same for every verdict and scene of the set).
+plant_rect() {
+    awk -v i="$1" -v n="$size" 'BEGIN { srand(7919 * i + 13); w = (n < 32 ? n : 32)
+        printf "%d,%d,%d,%d", int(rand() * (n - w + 1)), int(rand() * (n - w + 1)), w, w }'
+}
+
+# planted SET FACTOR RECT IN...: the inputs scaled, as $work/p.N.pfm.
+planted() {
+    pl_factor=$2
+    pl_rect=$3
+    shift 3
+    pl_j=1
+    for pl_in in "$@"; do
+        if [ "$pl_rect" = all ]; then
+            "$imgedit" --scale "$pl_factor" "$pl_in" "$work/p.$pl_j.pfm"
+        else
+            "$imgedit" --scale "$pl_factor" --rect "$pl_rect" "$pl_in" "$work/p.$pl_j.pfm"
+        fi
+        pl_j=$((pl_j + 1))
+    done
+}
+
+count1() { awk '$1 == 1 { n++ } END { print n + 0 }' "$1"; }
+
+make_refs
+echo "calibrate: ${size}x$size, $spp spp, $sets sets per verdict; pool $pool"
+grade_tmp=$work/grade
+for scene in $scenes; do
+    ref=$(ref_of "$scene")
+    mask=$(mask_of "$scene")
+    dir=$pool/$scene
+    need=$((2 * sets))
+    start=$(date +%s)
+    pool_renders "$render" "$dir" "$scene" "$spp" "$BASE" "$need"
+    sec=$(seconds_per_render "$dir")
+    echo "  $scene: $need renders ready ($(($(date +%s) - start)) s now; $sec processor s each)"
+    for v in compare-2 regions grade-page control; do
+        has_verdict "$v" || continue
+        : >"$work/$v"
+    done
+    : >"$work/compare-4"
+    for b in region1 region2 region5 whole0.5; do
+        : >"$work/c2.$b"
+        : >"$work/gp.$b"
+    done
+    i=0
+    ctl_renders=0
+    while [ "$i" -lt "$sets" ]; do
+        r1=$dir/$((BASE + 2 * i)).pfm
+        r2=$dir/$((BASE + 2 * i + 1)).pfm
+        ! has_verdict compare-2 || judge "$work/compare-2" "$r1" "$r2" "$ref"
+        ! has_verdict regions || judge "$work/regions" --regions "$mask" "$r1" "$r2" "$ref"
+        if has_verdict grade-page || has_verdict grade; then
+            judge "$work/grade-page" --alpha "$page_alpha" --regions "$mask" "$r1" "$r2" "$ref"
+            echo "$i $(tail -n 1 "$work/grade-page")" >>"$grade_tmp"
+        fi
+        if has_verdict control; then
+            jd_status=0
+            "$compare" -q --regions "$mask" "$r1" "$r2" "$ref" >/dev/null 2>&1 || jd_status=$?
+            if [ "$jd_status" -eq 1 ]; then
+                # Judged again as check-planted does: 4x the spp.
+                for j in 1 2; do
+                    [ -f "$dir/ctl/$i.$j.pfm" ] ||
+                        { mkdir -p "$dir/ctl"; render_one "$render" "$scene" $((4 * spp)) $((2 * BASE + 2 * i + j)) "$dir/ctl/$i.$j.pfm"; }
+                done
+                ctl_renders=$((ctl_renders + 2))
+                judge "$work/control" --regions "$mask" "$dir/ctl/$i.1.pfm" "$dir/ctl/$i.2.pfm" "$ref"
+            else
+                echo 0 >>"$work/control"
+            fi
+        fi
+        if has_verdict compare-4 && [ $((4 * i + 3)) -lt "$need" ]; then
+            judge "$work/compare-4" "$dir/$((BASE + 4 * i)).pfm" "$dir/$((BASE + 4 * i + 1)).pfm" \
+                "$dir/$((BASE + 4 * i + 2)).pfm" "$dir/$((BASE + 4 * i + 3)).pfm" "$ref"
+        fi
+        rect=$(plant_rect "$i")
+        for b in region1 region2 region5 whole0.5; do
+            case $b in
+                region1) planted "$i" 1.01 "$rect" "$r1" "$r2" ;;
+                region2) planted "$i" 1.02 "$rect" "$r1" "$r2" ;;
+                region5) planted "$i" 1.05 "$rect" "$r1" "$r2" ;;
+                whole0.5) planted "$i" 1.005 all "$r1" "$r2" ;;
+            esac
+            ! has_verdict compare-2 || judge "$work/c2.$b" "$work/p.1.pfm" "$work/p.2.pfm" "$ref"
+            ! has_verdict grade-page || judge "$work/gp.$b" --alpha "$page_alpha" --regions "$mask" \
+                "$work/p.1.pfm" "$work/p.2.pfm" "$ref"
+        done
+        i=$((i + 1))
+    done
+    pair=$(awk -v s="$sec" 'BEGIN { printf "%.4f", 2 * s }')
+    tally_pairs() { tally "$1" "$scene" "$2" "$3" "$sets" "$(count1 "$4")" $((2 * sets)) \
+        "$(awk -v n="$sets" -v p="$pair" -v x="${5:-0}" 'BEGIN { print n * p + x }')"; }
+    ! has_verdict compare-2 || tally_pairs compare-2 none 0 "$work/compare-2"
+    ! has_verdict regions || tally_pairs regions none 0 "$work/regions"
+    ! has_verdict grade-page || tally_pairs grade-page none 0 "$work/grade-page"
+    if has_verdict control; then
+        ctl_sec=0
+        [ ! -f "$dir/ctl/seconds" ] || ctl_sec=$(awk -v n="$ctl_renders" '{ s += $1; k++ } END { print k ? s / k * n : 0 }' "$dir/ctl/seconds")
+        tally control "$scene" none 0 "$sets" "$(count1 "$work/control")" $((2 * sets + ctl_renders)) \
+            "$(awk -v n="$sets" -v p="$pair" -v x="$ctl_sec" 'BEGIN { print n * p + x }')"
+    fi
+    ! has_verdict compare-4 || tally compare-4 "$scene" none 0 $((sets / 2)) "$(count1 "$work/compare-4")" \
+        $((2 * sets)) "$(awk -v n="$sets" -v p="$pair" 'BEGIN { print n * p }')"
+    for b in region1 region2 region5 whole0.5; do
+        pct=$(echo "$b" | sed 's/^[a-z]*//')
+        [ "${b#region}" != "$b" ] || pct=
+        ! has_verdict compare-2 || tally_pairs compare-2 "$b" "$pct" "$work/c2.$b"
+        ! has_verdict grade-page || tally_pairs grade-page "$b" "$pct" "$work/gp.$b"
+    done
+    echo "  $scene: verdicts done"
+done
+
+# One run of make grade: set i of every scene.
+if has_verdict grade; then
+    n_scenes=$(echo $scenes | wc -w)
+    awk -v n="$n_scenes" '{ any[$1] += $2; seen[$1]++ }
+        END { for (i in seen) if (seen[i] == n) print (any[i] > 0) }' "$grade_tmp" >"$work/grade.any"
+    tally grade all-scenes none 0 "$(wc -l <"$work/grade.any")" "$(count1 "$work/grade.any")" \
+        $((2 * sets * n_scenes)) "$(awk -F, '$1 == "grade-page" && $3 == "none" { s += $11 } END { print s + 0 }' "$csv")"
+fi
+
+# ---- planted code bugs ------------------------------------------------------
+# plant_stage (lablib.sh) builds a copy of stage 07 with one sed applied.
+if [ "$bug_sets" -gt 0 ]; then
+    for bug in missing-cosine light-pdf leak; do
+        case $bug in
+            missing-cosine) file=light.c; expr='s|vec3_scale(radiance, cos_surface \* weight / pdf)|vec3_scale(radiance, weight / pdf)|' ;;
+            light-pdf) file=light.c; expr='s|real pdf = pdf_solid_angle > 0 ? pdf_solid_angle : pick \* dist2 / cos_light_area;|real pdf = (real)1.1 * (pdf_solid_angle > 0 ? pdf_solid_angle : pick * dist2 / cos_light_area);|' ;;
+            leak) file=geometry.c; expr='s|^\( *\)ray r = spawn_ray(h, vec3_normalize(vec3_sub(to, h->p)));|&\n\1r.o = vec3_madd(r.o, r.d, (real)0.05);|' ;;
+        esac
+        tree=$cal/bug-$bug
+        plant_stage "$root" "$tree" 07_pathtrace "$file" -e "$expr" >"$work/plant.log" 2>&1 ||
+            die "cannot plant $bug: $(tail -n 5 "$work/plant.log")"
+        bug_render=$tree/build/07_pathtrace/render
+        bug_key=$(cat "$bug_render" | cksum | cut -d' ' -f1)
+        for scene in $scenes; do
+            dir=$cal/pool-$bug_key-$size-$spp/$scene
+            pool_renders "$bug_render" "$dir" "$scene" "$spp" "$BASE" $((2 * bug_sets))
+            : >"$work/b.c2"
+            : >"$work/b.gp"
+            i=0
+            while [ "$i" -lt "$bug_sets" ]; do
+                r1=$dir/$((BASE + 2 * i)).pfm
+                r2=$dir/$((BASE + 2 * i + 1)).pfm
+                judge "$work/b.c2" "$r1" "$r2" "$(ref_of "$scene")"
+                judge "$work/b.gp" --alpha "$page_alpha" --regions "$(mask_of "$scene")" "$r1" "$r2" "$(ref_of "$scene")"
+                i=$((i + 1))
+            done
+            bsec=$(awk -v s="$(seconds_per_render "$dir")" -v n="$bug_sets" 'BEGIN { print 2 * n * s }')
+            tally compare-2 "$scene" "$bug" "" "$bug_sets" "$(count1 "$work/b.c2")" $((2 * bug_sets)) "$bsec"
+            tally grade-page "$scene" "$bug" "" "$bug_sets" "$(count1 "$work/b.gp")" $((2 * bug_sets)) "$bsec"
+        done
+        echo "  $bug: done"
+    done
+fi
+
+# ---- the statistical stage tests under other seeds ---------------------------
+if [ "$seed_offsets" -gt 0 ]; then
+    "$root/tests/calibrate/seed-offsets.sh" "$seed_offsets" >"$work/seeds" || die "the seed-offset runs failed"
+    while read -r prog runs fails seconds; do
+        tally "test:$prog" - none "" "$runs" "$fails" 0 "$seconds"
+    done <"$work/seeds"
+fi
+
+cp "$csv" "$out/calibration.csv.tmp"
+mv "$out/calibration.csv.tmp" "$out/calibration.csv"
+"$build/tools/plotcsv" -x bias_pct -y rate -g verdict,scene -f bias=none\|region1\|region2\|region5 \
+    -f verdict=compare-2\|grade-page --title "How often a verdict says biased (${size}x$size, $spp spp)" \
+    --xlabel "bias planted in a 32x32 rectangle (%)" --ylabel "rate of 'biased'" \
+    -o "$out/calibration.svg" "$out/calibration.csv" || die "plotcsv failed"
+awk -F, -v size="$size" -v spp="$spp" -f "$root/tests/calibrate/table.awk" "$out/calibration.csv" >"$work/table.md"
+readme=$out/README.md
+[ -f "$readme" ] || die "no $readme (the text around the table)"
+awk -v table="$work/table.md" '
+    /^<!-- calibrate: table -->$/ { print; while ((getline l < table) > 0) print l; skip = 1; next }
+    /^<!-- calibrate: end -->$/ { skip = 0 }
+    !skip' "$readme" >"$work/README.md"
+mv "$work/README.md" "$readme"
+echo "wrote $out/calibration.csv, $out/calibration.svg and the table of $readme"
