@@ -32,12 +32,17 @@ async function fetchFile(path, asText) {
     return page.files[path];
 }
 
-// A request to a worker; resolves with its 'done' answer.  onMessage gets
-// the messages before it (passes, log lines).
+// A request to a worker; resolves with its 'done' answer, or with status
+// 'stopped' when worker.stop() ends it.  onMessage gets the messages before
+// it (passes, log lines).
 let nextId = 1;
 function ask(worker, request, onMessage) {
     const id = nextId++;
     return new Promise((resolve) => {
+        worker.stop = () => {
+            worker.terminate();
+            resolve({type: 'done', id, status: 'stopped'});
+        };
         worker.onmessage = (event) => {
             const m = event.data;
             if (m.id !== id) {
@@ -313,7 +318,7 @@ class Panel {
     }
 
     stop() {
-        for (const w of this.workers) w.terminate();
+        for (const w of this.workers) w.stop ? w.stop() : w.terminate();
         this.workers = [];
     }
 
@@ -360,7 +365,10 @@ class Panel {
             return rgb;
         };
         this.showLog([]);
-        this.setStatus('starting ' + nWorkers + ' workers...');
+        // No BVH before 05_bvh: every triangle is tested for every ray.
+        const meshes = scene.needs.length > 0 || /\.gl(b|tf)$/.test(scene.path);
+        const slow = meshes && stage < '05' ? ' (no BVH before 05_bvh: a mesh scene takes minutes at full size here; try a width of 64)' : '';
+        this.setStatus('starting ' + nWorkers + ' workers...' + slow);
         const runs = [];
         for (let part = 0; part < nWorkers; part++) {
             const worker = new Worker('worker.js');
@@ -378,7 +386,7 @@ class Panel {
                     this.size = size;
                     drawImage(this.q('.image'), this.rgb, size.width, size.height);
                     const secs = ((performance.now() - start) / 1000).toFixed(1);
-                    this.setStatus(`passes done: ${Math.min(...passes)} (every tile) to ${Math.max(...passes)}, ${secs} s`);
+                    this.setStatus(`passes done: ${Math.min(...passes)} (every tile) to ${Math.max(...passes)}, ${secs} s${slow}`);
                 }
             }));
         }
@@ -386,6 +394,10 @@ class Panel {
         this.stop();
         const seconds = (performance.now() - start) / 1000;
         const failed = answers.find((a) => a.status !== 0);
+        if (failed && failed.status === 'stopped') {
+            this.setStatus(`${stage}: stopped after ${seconds.toFixed(1)} s, ${Math.min(...passes)} complete passes shown`);
+            return {status: failed.status, log};
+        }
         if (failed) {
             if (failed.failure) log.push('error: ' + failed.failure);
             this.showLog(log);
