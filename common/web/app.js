@@ -80,13 +80,45 @@ function currentScene() {
     return scene;
 }
 
+// The models a scene's text names (mesh file WORD or "WORD", comments
+// left out), as paths of the page's files: scenes/WORD.
+function namedModels(text) {
+    const names = [];
+    for (const line of text.split('\n')) {
+        const m = /\bfile\s+(?:"([^"]*)"|(\S+))/.exec(line.replace(/#.*/, ''));
+        if (m) names.push('scenes/' + (m[1] || m[2]));
+    }
+    return names;
+}
+
+// The files of a render: the scene, the models it names that the library
+// bundles or the user uploaded beside it (the others: the stage's own
+// "cannot load mesh" error).
 async function sceneFiles(scene) {
     const files = {};
     files[scene.path] = scene.data;
-    for (const need of scene.needs) {
-        files[need] = await fetchFile(need, false);
+    const bundled = new Set(page.library.scenes.flatMap((s) => s.needs));
+    const named = typeof scene.data === 'string' ? namedModels(scene.data) : [];
+    for (const need of new Set(scene.needs.concat(named))) {
+        if (page.uploads[need]) {
+            files[need] = page.uploads[need];
+        } else if (bundled.has(need)) {
+            files[need] = await fetchFile(need, false);
+        }
     }
     return files;
+}
+
+// Files uploaded beside the scene (its models), by their page path.
+page.uploads = {};
+
+function uploadModel(file) {
+    const reader = new FileReader();
+    reader.onload = () => {
+        page.uploads['scenes/' + file.name] = reader.result;
+        page.uploads['scenes/models/' + file.name] = reader.result;
+    };
+    reader.readAsArrayBuffer(file);
 }
 
 function uploadScene(file) {
@@ -552,7 +584,15 @@ async function start() {
     showComparison();
     await chooseLibraryScene(select.value);
     select.onchange = () => chooseLibraryScene(select.value);
-    $('upload').onchange = () => $('upload').files[0] && uploadScene($('upload').files[0]);
+    // One scene among the files chosen (the first .scene, else the first
+    // glTF file), the others its models.
+    $('upload').onchange = () => {
+        const chosen = Array.from($('upload').files);
+        const scene = chosen.find((f) => f.name.endsWith('.scene')) || chosen[0];
+        if (!scene) return;
+        chosen.filter((f) => f !== scene).forEach(uploadModel);
+        uploadScene(scene);
+    };
     $('render').onclick = () => renderAll();
     $('stop').onclick = () => {
         for (const p of page.panels) p.stop();
