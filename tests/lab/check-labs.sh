@@ -13,7 +13,9 @@
 #              one reports a failure (a handout whose tests pass is broken);
 #              --quick runs them one TEST() at a time up to the first failure
 #   untouched  grade.sh scores the handout 0%: every lab test that passes
-#              without the work is a control, not scored           [full]
+#              without the work is a control, not scored; the controls
+#              are those of tests/course/controls/NN_name, where it exists
+#              (the course tools' list)                             [full]
 #   earlier    the other tests (earlier stages' features) pass     [full]
 #   no-leaks   no line of a LAB NN region is in the handout, unless it is
 #              also outside the regions or trivial (leaks.awk)
@@ -332,7 +334,12 @@ check_stage() {
             else
                 result FAIL "$cs_stage" "lab-fails: the lab's tests pass in the handout: a stub implements the feature, or the tests miss it"
             fi
-            if [ "$(field "$cs_g" score)" = 0.0 ] && [ "$(field "$cs_g" lab_passed)" = 0 ] && [ "$cs_total" -gt 0 ]; then
+            # The course tools' list of the lab's controls must be these.
+            cs_list=$root/tests/course/controls/$cs_stage
+            if [ -f "$cs_list" ] && ! LC_ALL=C sort "$cs_logs/controls" | cmp -s - "$cs_list"; then
+                result FAIL "$cs_stage" "untouched: its controls are not tests/course/controls/$cs_stage's (rewrite it: tests/course/controls.sh $cs_nn)"
+                LC_ALL=C sort "$cs_logs/controls" | diff "$cs_list" - | detail
+            elif [ "$(field "$cs_g" score)" = 0.0 ] && [ "$(field "$cs_g" lab_passed)" = 0 ] && [ "$cs_total" -gt 0 ]; then
                 result ok "$cs_stage" "untouched: grade.sh scores the handout 0% (0 of $cs_total; $cs_controls control(s) not scored)"
             else
                 result FAIL "$cs_stage" "untouched: grade.sh scores the handout $(field "$cs_g" score)%, not 0% $cs_log"
