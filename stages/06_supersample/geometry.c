@@ -47,20 +47,6 @@ world_make(const struct scene *s)
     return (struct world){.scene = s, .n_prims = n_shapes + n_lights};
 }
 
-bool
-world_build_bvh(struct world *w, struct diag *err)
-{
-    w->use_bvh = bvh_build(&w->bvh, w, err);
-    return w->use_bvh;
-}
-
-void
-world_free(struct world *w)
-{
-    bvh_free(&w->bvh);
-    w->use_bvh = false;
-}
-
 /*
  * The sphere quadratic t^2 + 2 b' t + c = 0 (unit direction), solved without
  * catastrophic cancellation (Haines et al., "Precision Improvements for
@@ -317,8 +303,8 @@ hit_finish(const struct scene *s, ray r, struct hit *h)
 bool
 world_intersect(const struct world *w, ray r, real t_max, struct hit *out, struct stats *st)
 {
-    if (w->use_bvh) {
-        bool hit = bvh_intersect(&w->bvh, w, r, t_max, out, st);
+    if (w->bvh.n_prims > 0) {
+        bool hit = bvh_intersect(&w->bvh, w, r, t_max, false, out, st);
         if (hit) {
             hit_finish(w->scene, r, out);
         }
@@ -342,10 +328,10 @@ bool
 world_occluded(const struct world *w, ray r, real t_max, struct stats *st)
 {
     /* LAB 02: any-hit query */
-    if (w->use_bvh) {
-        return bvh_occluded(&w->bvh, w, r, t_max, st);
-    }
     struct hit h;
+    if (w->bvh.n_prims > 0) {
+        return bvh_intersect(&w->bvh, w, r, t_max, true, &h, st);
+    }
     for (int prim = 0; prim < w->n_prims; prim++) {
         if (intersect_prim(w->scene, prim, r, t_max, &h)) {
             st->prim_tests += (uint64_t)prim + 1;

@@ -13,7 +13,6 @@
 #include <stdbool.h>
 
 #include "bvh.h"
-#include "diag.h"
 #include "scene.h"
 #include "stats.h"
 #include "vec3.h"
@@ -35,18 +34,10 @@ struct hit {
 struct world {
     const struct scene *scene;
     int n_prims;
-    struct bvh bvh; /* built by world_build_bvh */
-    bool use_bvh; /* false: test every primitive (the reference) */
+    struct bvh bvh; /* none (n_prims 0): test every primitive, the reference */
 };
 
 struct world world_make(const struct scene *s);
-
-/* Build the BVH over the world's primitives and use it from now on.  False
- * (err says why) when memory runs out; the world then stays brute force. */
-bool world_build_bvh(struct world *w, struct diag *err);
-
-/* Free what world_build_bvh allocated; accepts a world without a BVH. */
-void world_free(struct world *w);
 
 /* Nearest intersection with t in (0, t_max); the direction must be unit. */
 bool intersect_sphere(const struct sphere *sphere, ray r, real t_max, real *t);

@@ -192,17 +192,14 @@ build_acceleration(
         return true;
     }
     double start = clock_seconds();
-    if (!world_build_bvh(&renderer->world, err)) {
+    struct bvh *bvh = &renderer->world.bvh;
+    if (!bvh_build(bvh, &renderer->world, err)) {
         return false;
     }
-    const struct bvh *bvh = &renderer->world.bvh;
     rep->seconds_build = clock_seconds() - start;
     report_set(rep, "bvh_nodes", bvh->n_nodes, true);
     report_set(rep, "bvh_aside", bvh->n_aside, true);
     report_set(rep, "bvh_depth", bvh->depth, true);
-    report_set(rep, "bvh_max_leaf", bvh->max_leaf, true);
-    report_set(rep, "bvh_mean_leaf", bvh->mean_leaf, false);
-    report_set(rep, "bvh_bytes", (double)bvh->bytes, true);
     return true;
 }
 
@@ -308,7 +305,7 @@ main(int argc, char **argv)
     }
     int status = render(&renderer, &run);
     light_picker_free(&renderer.lights);
-    world_free(&renderer.world);
+    bvh_free(&renderer.world.bvh);
     run_free(&run);
     return status;
 }

@@ -224,7 +224,7 @@ bench_shadow_rays(
     for (size_t i = 0; i < camera->n; i++) {
         struct hit h;
         ray r = camera->rays[i];
-        if (bvh_intersect(&m->bvh, &m->world, r, camera->t_max[i], &h, &st)
+        if (bvh_intersect(&m->bvh, &m->world, r, camera->t_max[i], false, &h, &st)
             && shadow_ray(m, r, &h, &out->rays[out->n], &out->t_max[out->n])) {
             out->n++;
         }
@@ -332,14 +332,15 @@ bench_bvh_closest(const void *ctx, ray r, real t_max, struct stats *st)
 {
     const struct bench_model *m = ctx;
     struct hit h;
-    return bvh_intersect(&m->bvh, &m->world, r, t_max, &h, st);
+    return bvh_intersect(&m->bvh, &m->world, r, t_max, false, &h, st);
 }
 
 bool
 bench_bvh_any(const void *ctx, ray r, real t_max, struct stats *st)
 {
     const struct bench_model *m = ctx;
-    return bvh_occluded(&m->bvh, &m->world, r, t_max, st);
+    struct hit h;
+    return bvh_intersect(&m->bvh, &m->world, r, t_max, true, &h, st);
 }
 
 bool

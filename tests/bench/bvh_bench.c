@@ -33,7 +33,9 @@ print_model(const struct bench_model *m)
         m->seconds_build,
         m->bvh.n_nodes,
         m->bvh.depth,
-        (double)m->bvh.bytes / (1 << 20));
+        (double)((size_t)m->bvh.n_nodes * sizeof *m->bvh.nodes
+                 + (size_t)m->bvh.n_prims * sizeof *m->bvh.prims)
+            / (1 << 20));
     printf(
         "  %-8s %8s %8s %12s %12s %10s %10s\n",
         "rays",
