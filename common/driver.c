@@ -264,7 +264,8 @@ render_image(
     struct pass_state ps = {.job = job};
     ps.tiles_x = (job->width + TILE_SIZE - 1) / TILE_SIZE;
     ps.n_tiles = ps.tiles_x * ((job->height + TILE_SIZE - 1) / TILE_SIZE);
-    ps.values = malloc(n * sizeof *ps.values);
+    /* Zeroed: the tiles of other shares (render_share) are never written. */
+    ps.values = calloc(n, sizeof *ps.values);
     vec3 *sum = calloc(n, sizeof *sum);
     unsigned char *bad = calloc(n, 1);
     struct worker *workers = calloc((size_t)job->threads, sizeof *workers);

@@ -2,7 +2,8 @@
  * test_driver.c - the tile renderer: every pixel computed once per pass,
  * images independent of the thread count, passes averaged, NaN pixels
  * counted and guarded, statistics summed over threads, a progressive
- * pixel function told its pass.
+ * pixel function told its pass; shares of the tiles (render_share, the
+ * browser build's workers) that add up to the whole image bit for bit.
  */
 #include <string.h>
 
@@ -117,8 +118,60 @@ TEST(progressive_pixel_is_told_its_pass)
     image_free(&img);
 }
 
+/* What on_pass saw: how often it was called and the last pass count. */
+struct pass_log {
+    int calls, last;
+};
+
+static void
+log_pass(void *ctx, const struct image *mean, int passes_done)
+{
+    struct pass_log *log = ctx;
+    (void)mean;
+    log->calls++;
+    log->last = passes_done;
+}
+
+TEST(shares_add_up_to_the_image)
+{
+    enum { PARTS = 3, FLOATS = 3 * 37 * 21 };
+    struct image whole = {0};
+    struct render_result r;
+    struct diag err;
+    struct render_job j = job_for(noisy_pixel, 2, 4);
+    CHECK(render_image(&j, &whole, &r, &err));
+    static float sum[FLOATS];
+    uint64_t rays = 0;
+    for (int part = 0; part < PARTS; part++) {
+        struct pass_log log = {0};
+        struct render_share share = {.part = part, .parts = PARTS, .on_pass = log_pass, .ctx = &log};
+        struct image img = {0};
+        render_set_share(&share);
+        CHECK(render_image(&j, &img, &r, &err));
+        CHECK(log.calls == 4 && log.last == 4);
+        rays += r.counts.rays_camera;
+        for (int i = 0; i < FLOATS; i++) {
+            sum[i] += img.rgb[i];
+        }
+        image_free(&img);
+    }
+    render_set_share(NULL);
+    CHECK(rays == 4 * 37 * 21); /* every pixel rendered by one share */
+    CHECK(memcmp(sum, whole.rgb, sizeof sum) == 0);
+    /* An image rendered already is returned as it is. */
+    struct render_share given = {.part = 0, .parts = 1, .rendered = &whole};
+    struct image copy = {0};
+    render_set_share(&given);
+    CHECK(render_image(&j, &copy, &r, &err));
+    render_set_share(NULL);
+    CHECK(r.passes_done == 4 && memcmp(copy.rgb, whole.rgb, sizeof sum) == 0);
+    image_free(&copy);
+    image_free(&whole);
+}
+
 TEST_MAIN(
     TEST_ENTRY(every_pixel_once_and_thread_independent),
     TEST_ENTRY(nan_pixels_are_counted_and_zeroed),
     TEST_ENTRY(seed_changes_the_image),
-    TEST_ENTRY(progressive_pixel_is_told_its_pass))
+    TEST_ENTRY(progressive_pixel_is_told_its_pass),
+    TEST_ENTRY(shares_add_up_to_the_image))
