@@ -71,19 +71,18 @@ add_sums(struct sums *into, const struct sums *from)
  * mean (its squared SE the summed variances over n^2, pixels being
  * independent; Welch-Satterthwaite's degrees of freedom from pixel_dof
  * each) against the reference's (SE ref_rel_se (|mean| + 0.01) / sqrt(n)).
- * For a region's part in a block, region holds the whole region's sums:
- * the part's summed variance is at least n times the region's mean
- * per-pixel variance.  Rare bright paths (caustics, light through glass,
- * their images in a mirror) make a part's mean heavy-tailed, and its own
- * variance falls with its mean: two renders that missed more of them than
- * usual in one block look darker and less noisy at once (correct renders
- * of cornell_specular_area flagged in 7 of 19 pairs, 256x256, 64 spp; 0 of
- * 19 with the region's variance: docs/calibration/README.md).  The rest of
- * the region saw such paths; its degrees of freedom stay the part's own. */
+ * The summed variance is at least floor (NULL: no floor), what the
+ * pixels around them give (floors()).  Rare bright paths (caustics,
+ * light through glass, their images in a mirror) make a mean heavy-tailed,
+ * and its own variance falls with it: two renders that missed more of
+ * them than usual look darker and less noisy at once (correct renders of
+ * cornell_specular_area flagged in 7 of 19 pairs, 256x256, 64 spp, without
+ * a floor: docs/calibration/README.md).  The pixels around saw such paths;
+ * the degrees of freedom stay the pixels' own (fewer: conservative). */
 static void
 test_sums(
     const struct sums *s,
-    const struct sums *region,
+    const double *floor,
     const struct region_inputs *in,
     double mean[3],
     double ref_mean[3],
@@ -99,8 +98,7 @@ test_sums(
             p[c] = s->nonfinite ? 0 : 1;
             continue;
         }
-        double pooled = region && region->n ? n * region->v[c] / (double)region->n : 0;
-        double var_mean = fmax(s->v[c], pooled) / (n * n);
+        double var_mean = fmax(s->v[c], floor ? floor[c] : 0) / (n * n);
         double dof =
             in->pixel_dof > 0 && s->v2[c] > 0 ? s->v[c] * s->v[c] / (s->v2[c] / in->pixel_dof) : 0;
         /* Near black a relative SE means nothing (a sliver of light at a
@@ -232,6 +230,38 @@ pick_pixel(const struct region_inputs *in, const struct sums *cell, struct regio
     }
 }
 
+/* The mean per-pixel variance of the 3x3 blocks around each block, all
+ * regions together (around: 3 per block): a set of pixels' summed variance
+ * is at least, pixel by pixel, what the blocks around them give, as a
+ * block's is in metrics.c.  A small region (a penumbra's sliver, what the
+ * mirror shows of the background) that missed the rare paths as a whole
+ * is held to the variance of the pixels around it. */
+static void
+floors(const struct sums *cells, int blocks_x, int blocks_y, double *around)
+{
+    for (int b = 0; b < blocks_x * blocks_y; b++) {
+        int bx = b % blocks_x, by = b / blocks_x;
+        double v[3] = {0, 0, 0}, n = 0;
+        for (int j = by - 1; j <= by + 1; j++) {
+            for (int i = bx - 1; i <= bx + 1; i++) {
+                if (i < 0 || j < 0 || i >= blocks_x || j >= blocks_y) {
+                    continue;
+                }
+                for (int label = 0; label < REGIONS_MAX; label++) {
+                    const struct sums *cell = &cells[(size_t)(j * blocks_x + i) * REGIONS_MAX + (size_t)label];
+                    n += (double)cell->n;
+                    for (int c = 0; c < 3; c++) {
+                        v[c] += cell->v[c];
+                    }
+                }
+            }
+        }
+        for (int c = 0; c < 3; c++) {
+            around[3 * (size_t)b + (size_t)c] = n > 0 ? v[c] / n : 0;
+        }
+    }
+}
+
 /* The region's block tests (or, without noise, its block of largest
  * error): the most significant one becomes the region's block. */
 static void
@@ -239,6 +269,7 @@ judge_blocks(
     const struct region_inputs *in,
     const struct sums *cells,
     const struct sums *whole,
+    const double *around,
     int blocks_x,
     int n_blocks,
     double level,
@@ -252,8 +283,12 @@ judge_blocks(
         if (cell->n == 0 && !cell->nonfinite) {
             continue;
         }
-        double mean[3], ref_mean[3], t[3], p[3];
-        test_sums(cell, whole, in, mean, ref_mean, t, p);
+        double mean[3], ref_mean[3], t[3], p[3], floor[3];
+        for (int c = 0; c < 3; c++) {
+            double region_pixel = whole->n ? whole->v[c] / (double)whole->n : 0;
+            floor[c] = (double)cell->n * fmax(region_pixel, around[3 * (size_t)b + (size_t)c]);
+        }
+        test_sums(cell, floor, in, mean, ref_mean, t, p);
         /* Parts too small to test are chosen only when none is tested:
          * then the largest. */
         bool tested = !noise || (block_tested(cell) && !near_black(mean, ref_mean));
@@ -301,7 +336,10 @@ regions_compare(const struct region_inputs *in, struct region_report *out, struc
     int blocks_x = (width + bs - 1) / bs, blocks_y = (height + bs - 1) / bs;
     int n_blocks = blocks_x * blocks_y;
     struct sums *cells = calloc((size_t)n_blocks * REGIONS_MAX, sizeof *cells);
-    if (!cells) {
+    double *around = malloc((size_t)n_blocks * 3 * sizeof *around);
+    if (!cells || !around) {
+        free(cells);
+        free(around);
         diag_set(err, NULL, 0, 0, "out of memory");
         return false;
     }
@@ -328,6 +366,7 @@ regions_compare(const struct region_inputs *in, struct region_report *out, struc
             out->n_regions++;
         }
     }
+    floors(cells, blocks_x, blocks_y, around);
     out->n_tests = 3 * (out->n_regions + present_blocks);
     int family = out->n_tests + in->other_tests;
     out->level = family > 0 ? stattest_sidak(in->alpha, family) : in->alpha;
@@ -340,10 +379,17 @@ regions_compare(const struct region_inputs *in, struct region_report *out, struc
         struct region_result *r = &out->regions[k++];
         *r = (struct region_result){.label = label, .n_pixels = s->n, .pixel_x = -1, .pixel_y = -1};
         r->relmse = s->n ? s->rel2 / (double)s->n : NAN;
-        test_sums(s, NULL, in, r->mean, r->ref_mean, r->t, r->p);
+        double floor[3] = {0, 0, 0};
+        for (int b = 0; b < n_blocks; b++) {
+            for (int c = 0; c < 3; c++) {
+                floor[c] += (double)cells[(size_t)b * REGIONS_MAX + (size_t)label].n
+                            * around[3 * (size_t)b + (size_t)c];
+            }
+        }
+        test_sums(s, floor, in, r->mean, r->ref_mean, r->t, r->p);
         r->min_p = out->noise ? min3(r->p) : 1;
         r->whole_rejects = out->noise && !(min3(r->p) >= out->level);
-        judge_blocks(in, cells, s, blocks_x, n_blocks, out->level, out->noise, r);
+        judge_blocks(in, cells, s, around, blocks_x, n_blocks, out->level, out->noise, r);
         if (out->noise) {
             r->biased = r->whole_rejects || r->n_failing_blocks > 0;
         } else {
@@ -351,6 +397,7 @@ regions_compare(const struct region_inputs *in, struct region_report *out, struc
         }
     }
     free(cells);
+    free(around);
     return true;
 }
 

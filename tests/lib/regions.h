@@ -10,9 +10,12 @@
  * REGIONS_MIN_BLOCK_PIXELS pixels, not black in both images): per channel, Welch's t-test of
  * the render's mean over the region's pixels against the reference's
  * (metrics.h's block test restricted to the region's pixels).  Every test
- * of every region is one of a family, Sidak-corrected at level alpha: a
- * region is biased when one of its tests rejects.  Without noise, each
- * region's relMSE is held against a limit instead.  A region's report
+ * of every region is one of a family, Sidak-corrected at level alpha (with
+ * other_tests, compare's block tests): a region is biased when one of its
+ * tests rejects.  The variance of a set of pixels is at least what the
+ * blocks around them give (rare bright paths make means heavy-tailed:
+ * regions.c, docs/calibration/README.md).  Without noise, each region's
+ * relMSE is held against a limit instead.  A region's report
  * names the block of its most significant test and one of the region's
  * pixels in it: the pixel to replay with `render --pixel X,Y --trace -`.
  */
