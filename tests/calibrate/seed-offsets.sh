@@ -14,7 +14,7 @@
 #   PROGRAM RUNS FAILED_RUNS SECONDS
 # (SECONDS: the runs' wall-clock time; calibrate.sh's table adds the
 # rate's interval), and the failing runs' FAIL lines on standard error.
-# Builds the test programs first (make -C tests stage, as make test does).
+# Builds each test program and its stage first.
 # Exit status: 0 run (whatever the failures), 1 a program could not run, 2 usage.
 set -eu
 
@@ -43,8 +43,9 @@ for prog in $programs; do
     stage=$(stage_list "$root" | awk -v from="$from" -v upto="$upto" '
         { nn = substr($0, 1, 2) } nn >= from && (upto == from || nn <= upto) { last = $0 } END { print last }')
     [ -n "$stage" ] || die "no stage for $prog"
-    plain_make -C "$root/tests" stage STAGE="$stage" >/dev/null 2>&1 || true
     bin=$root/build/tests/$stage/$prog
+    # The stage and this one program (make -C tests stage would run them all).
+    { plain_make -C "$root" "$stage" && plain_make -C "$root/tests" STAGE="$stage" "$bin"; } >/dev/null 2>&1 || true
     [ -x "$bin" ] || die "$bin was not built"
     failed=0
     start=$(date +%s)
