@@ -12,7 +12,7 @@
 #   make fuzz       every parser under libFuzzer for FUZZ_SECONDS (60) each (clang)
 #   make demo       render the showcase scenes through the stages into out/ (and
 #                   the mesh scenes through the stages with a BVH)
-#   make gallery    scenes/README.md: every scene, its first correct stage and 07
+#   make gallery    scenes/README.md: every scene, its first correct stage and the last
 #   make config     what the build found (OpenEXR, tinygltf, emscripten)
 #   make web        every stage in the browser: build/web/, a static page
 #                   (docs/web.md; needs emscripten's emcc)
@@ -112,7 +112,7 @@ demo: all
 	@echo "wrote out/*.png$(if $(DEMO_MESH_SCENES), (the mesh scenes from 05_bvh on), (no mesh scenes: no glTF support, apt-get install libtinygltf-dev))"
 
 # The gallery of every scene (scenes/README.md, scenes/gallery/): each from
-# the first stage that renders it correctly and from 07, with render times.
+# the first stage that renders it correctly and from the last stage, with render times.
 gallery: all
 	@scenes/make-gallery.sh
 

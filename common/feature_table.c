@@ -75,6 +75,7 @@ static const char *const stage_names[STAGE_COUNT + 1] = {
     "05_bvh",
     "06_supersample",
     "07_pathtrace",
+    "08_variance_reduction",
 };
 
 const struct feature_info *

@@ -14,7 +14,7 @@
 #include "diag.h"
 #include "scene.h"
 
-#define STAGE_COUNT 7
+#define STAGE_COUNT 8
 
 struct feature_info {
     const char *name; /* "area light" */

@@ -11,10 +11,11 @@
 # (its header's "First rendered correctly by NN_name"; for a scene with a
 # mesh, 05_bvh if that stage is earlier, since the stages before the BVH
 # test every triangle for every ray: correct, but minutes to hours), and one
-# from 07_pathtrace.  Images go to scenes/gallery/NAME_NN.png, times are the
+# from the last stage (today 08_variance_reduction).  Images go to
+# scenes/gallery/NAME_NN.png, times are the
 # renders' own statistics (--stats: seconds_total, wall clock with loading
 # and the BVH build).  Every render uses 2 threads (-t 2), the CI machine's
-# cores.  Knobs: GALLERY_SPP (07's samples per pixel, default 64),
+# cores.  Knobs: GALLERY_SPP (07's and later stages' samples per pixel, default 64),
 # GALLERY_SPP06 (06's, default 16).
 set -eu
 
@@ -34,7 +35,8 @@ die() {
     exit 1
 }
 
-[ -x "${build}07_pathtrace/render" ] || die "no ${build}07_pathtrace/render: run make first"
+last=$(cd stages && ls -d [0-9][0-9]_* | tail -n 1)
+[ -x "${build}$last/render" ] || die "no ${build}$last/render: run make first"
 mkdir -p "$out"
 
 if [ $# -gt 0 ]; then
@@ -89,7 +91,7 @@ for scene in $scenes; do
     fi
     case $shown in
         06_*) args="-s $spp06" ;;
-        07_*) args="-s $spp07" ;;
+        0[7-9]_*) args="-s $spp07" ;;
         *) args="" ;;
     esac
     echo "$name: $shown"
@@ -97,12 +99,12 @@ for scene in $scenes; do
     t_first=$(render "$scene" "$shown" $args)
     first_notes=$(wc -l <"$tmp/notes")
     cell_first="![$name, $shown](gallery/${name}_${shown%%_*}.png)<br>\`$shown\`$why: $(printf '%.2f' "$t_first") s"
-    if [ "$shown" = 07_pathtrace ]; then
+    if [ "$shown" = "$last" ]; then
         cell_07="(the same)"
     else
-        echo "$name: 07_pathtrace"
-        t_07=$(render "$scene" 07_pathtrace -s "$spp07")
-        cell_07="![$name, 07_pathtrace](gallery/${name}_07.png)<br>$spp07 spp: $(printf '%.2f' "$t_07") s"
+        echo "$name: $last"
+        t_07=$(render "$scene" "$last" -s "$spp07")
+        cell_07="![$name, $last](gallery/${name}_${last%%_*}.png)<br>$spp07 spp: $(printf '%.2f' "$t_07") s"
     fi
     size=$(awk '$1 == "image" { print $3 "x" $5 }' "$scene")
     notes=""
@@ -128,7 +130,7 @@ cpu=$(sed -n 's/^model name[^:]*: *//p' /proc/cpuinfo 2>/dev/null | head -1)
     echo "Each scene's own header comment says what it shows and which stage first"
     echo "renders it correctly; the first picture is from that stage (from \`05_bvh\` for"
     echo "scenes with meshes, whose earlier stages are correct but test every triangle"
-    echo "for every ray), the second from \`07_pathtrace\` at $spp07 samples per pixel"
+    echo "for every ray), the second from \`$last\` at $spp07 samples per pixel"
     echo "(\`06_supersample\` at $spp06). Times are each render's \`seconds_total\` (wall"
     echo "clock, loading and the BVH build included) on 2 threads (\`-t 2\`): ${cpu:-unknown CPU},"
     echo "load average $load when the gallery was made. On a shared machine they"
@@ -138,7 +140,7 @@ cpu=$(sed -n 's/^model name[^:]*: *//p' /proc/cpuinfo 2>/dev/null | head -1)
     echo "that does not model something a scene uses says so in one line and renders"
     echo "it anyway (\`--strict\` refuses). Models and their credits: [models/CREDITS.md](models/CREDITS.md)."
     echo
-    echo "| scene | what it shows | first correct stage | 07_pathtrace |"
+    echo "| scene | what it shows | first correct stage | $last |"
     echo "|---|---|---|---|"
     sort "$rows"
 } >"$tmp/page"

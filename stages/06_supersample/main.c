@@ -53,9 +53,9 @@ parse_command_line(struct run *run, int argc, char **argv, struct renderer *rend
             .name = "aa",
             .kind = OPT_CHOICE,
             .dest = &renderer->aa,
-            .choices = "grid|jitter|adaptive|sobol",
+            .choices = "grid|jitter|adaptive",
             .arg = "PATTERN",
-            .help = "where camera samples go in a pixel: grid, jitter (default), adaptive, sobol",
+            .help = "where camera samples go in a pixel: grid, jitter (default), adaptive",
         },
         {
             .name = "aa-threshold",
@@ -139,7 +139,6 @@ render(struct renderer *renderer, struct run *run)
 {
     struct render_job job = run_job(run, renderer);
     job.pixel = render_pixel;
-    renderer->seed = run->opt.seed;
     renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
     run->rep.extra_names[STAT_PENUMBRA] = "penumbra_pixels";
     run->rep.extra_names[STAT_AA_REFINED] = "aa_refined_pixels";

@@ -7,7 +7,6 @@
 #include "render.h"
 
 #include "inspect.h"
-#include "lowdisc.h"
 #include "optics.h"
 
 /* Parity (0 or 1) of the cell of a 1D checkerboard that x falls in;
@@ -172,8 +171,7 @@ luminance(vec3 c)
 }
 
 /* The sum of n samples of pixel (px, py); widens [*lum_min, *lum_max] to
- * the range of their luminances.  The Sobol pattern takes the pixel's first
- * n points of a sequence scrambled by the seed and the pixel. */
+ * the range of their luminances. */
 static vec3
 sum_samples(
     const struct renderer *renderer,
@@ -186,16 +184,11 @@ sum_samples(
     real *lum_min,
     real *lum_max)
 {
-    uint64_t key = rng_mix64(renderer->seed ^ rng_mix64(((uint64_t)py << 32) | (uint32_t)px));
     vec3 sum = vec3_splat(0);
     for (int i = 0; i < n; i++) {
         real dx;
         real dy;
-        if (pattern == AA_SOBOL) {
-            lowdisc_point2((uint32_t)i, key, &dx, &dy);
-        } else {
-            sample_position(pattern, i, n, rng, &dx, &dy);
-        }
+        sample_position(pattern, i, n, rng, &dx, &dy);
         ray primary = camera_ray(&renderer->camera, (real)px + dx, (real)py + dy);
         st->rays_camera++;
         inspect_sample(st, i, (real)px + dx, (real)py + dy, primary);

@@ -24,7 +24,6 @@ enum aa_pattern {
     AA_GRID, /* a regular k x k grid (spp = k^2) */
     AA_JITTER, /* one random sample in each cell of that grid */
     AA_ADAPTIVE, /* a few jittered samples; all spp only where they disagree */
-    AA_SOBOL, /* Owen-scrambled Sobol points (lowdisc.h): stratified at every scale */
 };
 
 /* Probe samples of adaptive sampling.  A pixel costs this many samples where
@@ -47,7 +46,6 @@ struct renderer {
     int spp; /* camera samples per pixel */
     int aa; /* enum aa_pattern */
     real aa_threshold;
-    uint64_t seed; /* --seed: scrambles the Sobol points of each pixel */
 };
 
 /* Radiance leaving the surface at h (where r hit it) towards r's origin;

@@ -13,15 +13,7 @@
 /* The command line: the options every stage shares (cli.h), then this
  * stage's own. */
 static bool
-parse_command_line(
-    struct run *run,
-    int argc,
-    char **argv,
-    struct renderer *renderer,
-    bool *use_bvh,
-    int *brute_max,
-    int *mis,
-    int *light_sampling)
+parse_command_line(struct run *run, int argc, char **argv, struct renderer *renderer, bool *use_bvh)
 {
     const struct option_spec stage_options[] = {
         {
@@ -67,39 +59,12 @@ parse_command_line(
             .help = "Russian roulette from the N-th ray on, camera ray = 1 (default 3)",
         },
         {
-            .name = "rr-threshold",
-            .kind = OPT_REAL,
-            .dest = &renderer->rr_threshold,
-            .min = 0.001,
-            .max = 1,
-            .arg = "T",
-            .help = "Russian roulette: survive with probability max(throughput) / T, at most "
-                    "0.95 (default 0.4)",
-        },
-        {
-            .name = "sampler",
-            .kind = OPT_CHOICE,
-            .dest = &renderer->sampler,
-            .choices = "independent|sobol",
-            .arg = "KIND",
-            .help = "random numbers of the paths: independent, sobol (default)",
-        },
-        {
-            .name = "brute-force-max",
-            .kind = OPT_INT,
-            .dest = brute_max,
-            .min = 0,
-            .max = 1 << 30,
-            .arg = "N",
-            .help = "no BVH for scenes of at most N primitives (default 16; 0: always a BVH)",
-        },
-        {
             .name = "aa",
             .kind = OPT_CHOICE,
             .dest = &renderer->aa,
-            .choices = "grid|jitter|adaptive|sobol",
+            .choices = "grid|jitter|adaptive",
             .arg = "PATTERN",
-            .help = "where camera samples go in a pixel: grid, jitter, adaptive, sobol (default)",
+            .help = "where camera samples go in a pixel: grid, jitter (default), adaptive",
         },
         {
             .name = "aa-threshold",
@@ -115,23 +80,6 @@ parse_command_line(
             .kind = OPT_UNSET,
             .dest = &renderer->nee,
             .help = "no shadow rays to area lights: paths must hit them",
-        },
-        {
-            .name = "mis",
-            .kind = OPT_CHOICE,
-            .dest = mis,
-            .choices = "off|on",
-            .arg = "off|on",
-            .help = "weigh shadow rays and bounces that hit a light by MIS (default on)",
-        },
-        {
-            .name = "light-sampling",
-            .kind = OPT_CHOICE,
-            .dest = light_sampling,
-            .choices = "area|solid-angle|auto",
-            .arg = "HOW",
-            .help = "points on rectangle lights: uniform in area (default), in solid-angle, auto "
-                    "(solid angle where a light looks large)",
         },
         {
             .name = "no-rr",
@@ -175,20 +123,11 @@ choose_spp(struct renderer *renderer, const struct options *opt, struct diag *er
     return true;
 }
 
-/* Build the BVH (unless --no-bvh, or the scene has at most brute_max
- * primitives) and report its shape.  On a few primitives testing them all
- * costs less than descending a tree to them: the Cornell boxes' 8 take 1.46
- * times fewer instructions by brute force (callgrind); the crossing is near
- * 20, so scenes of up to BRUTE_FORCE_MAX_PRIMS skip the tree. */
+/* Build the BVH (unless --no-bvh) and report its shape. */
 static bool
-build_acceleration(
-    struct renderer *renderer,
-    bool use_bvh,
-    int brute_max,
-    struct report *rep,
-    struct diag *err)
+build_acceleration(struct renderer *renderer, bool use_bvh, struct report *rep, struct diag *err)
 {
-    if (!use_bvh || renderer->world.n_prims <= brute_max) {
+    if (!use_bvh) {
         return true;
     }
     double start = clock_seconds();
@@ -242,19 +181,19 @@ static int
 render(struct renderer *renderer, struct run *run)
 {
     struct render_job job = run_job(run, renderer);
-    job.pass_pixel = render_pixel;
-    /* Progressive: the image is built in passes of a few samples per pixel,
-     * placed together by the --aa pattern (render.c), so it can be stopped (Ctrl-C,
+    job.pixel = render_pixel;
+    /* Progressive: the image is the mean of passes of a few samples per
+     * pixel, each pass a pattern of its own, so it can be stopped (Ctrl-C,
      * --time) after any pass. */
-    renderer->spp_pass = samples_per_pass(renderer->spp);
-    renderer->seed = run->opt.seed;
-    job.passes = renderer->spp / renderer->spp_pass;
+    int per_pass = samples_per_pass(renderer->spp);
+    job.passes = renderer->spp / per_pass;
     job.time_limit = renderer->time_limit;
+    renderer->spp = per_pass;
     renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
     run->rep.extra_names[STAT_PENUMBRA] = "penumbra_pixels";
     run->rep.extra_names[STAT_AA_REFINED] = "aa_refined_pixels";
     run->aov = (struct aov_source){renderer, pass_camera_ray, pass_first_hit};
-    return run_render(run, &job, renderer->spp_pass);
+    return run_render(run, &job, renderer->spp);
 }
 
 int
@@ -263,32 +202,17 @@ main(int argc, char **argv)
     struct renderer renderer = {
         .shadow = {.samples = 1},
         .max_depth = 1 << 16,
-        .aa = AA_SOBOL,
+        .aa = AA_JITTER,
         .aa_threshold = (real)0.05,
         .nee = true,
         .rr = true,
         .rr_depth = RR_MIN_DEPTH,
-        .rr_threshold = (real)RR_THRESHOLD,
-        .sampler = SAMPLER_SOBOL,
     };
     bool use_bvh = true;
-    int brute_max = BRUTE_FORCE_MAX_PRIMS;
-    int mis = 1; /* the index of "on" in off|on */
-    int light_sampling = RECT_BY_AREA;
     struct run run;
-    if (!parse_command_line(
-            &run,
-            argc,
-            argv,
-            &renderer,
-            &use_bvh,
-            &brute_max,
-            &mis,
-            &light_sampling)) {
+    if (!parse_command_line(&run, argc, argv, &renderer, &use_bvh)) {
         return run.status;
     }
-    renderer.mis = mis == 1;
-    renderer.shadow.rect = light_sampling;
     struct diag err;
     if (!choose_spp(&renderer, &run.opt, &err)) {
         return run_fail(&run, &err, EXIT_USAGE);
@@ -298,13 +222,10 @@ main(int argc, char **argv)
     }
     renderer.scene = &run.scene;
     renderer.world = world_make(&run.scene);
-    if (!light_picker_build(&renderer.lights, &run.scene, &err)
-        || !build_acceleration(&renderer, use_bvh, brute_max, &run.rep, &err)) {
-        light_picker_free(&renderer.lights);
+    if (!build_acceleration(&renderer, use_bvh, &run.rep, &err)) {
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
     int status = render(&renderer, &run);
-    light_picker_free(&renderer.lights);
     bvh_free(&renderer.world.bvh);
     run_free(&run);
     return status;

@@ -1,13 +1,14 @@
 #!/bin/sh
-# pathtrace_bench.sh - how fast stage 07 converges on the Cornell scenes,
-# beside Mitsuba 3 when it can be had.
+# pathtrace_bench.sh - how fast the last stage (stages/ in order: today
+# 08_variance_reduction) converges on the Cornell scenes, beside Mitsuba 3
+# when it can be had; it names the stage it runs.
 #
-# For each scene, stage 07 with its defaults (MIS on, lights sampled by
-# area, the Sobol sampler, Russian roulette threshold 0.4), with --mis
-# off (as before MIS), with --light-sampling solid-angle and auto, with the
-# independent sampler (--sampler independent --aa jitter), and with the
-# defaults before the Sobol sampler and the roulette threshold (--sampler
-# independent --aa jitter --rr-threshold 1): spp x relMSE
+# For each scene, the stage with its defaults (the Sobol sampler, Russian
+# roulette threshold 0.4, no tree on small scenes) and with each of its
+# refinements turned back to stage 07's way: the independent sampler
+# (--sampler independent --aa jitter), roulette's threshold 1
+# (--rr-threshold 1), the tree on every scene (--brute-force-max 0), and
+# all three at once (stage 07's path tracer): spp x relMSE
 # against Mitsuba's converged reference (a constant for an unbiased
 # estimator: relMSE falls as 1/spp), seconds per spp at 256x256 on 2
 # threads, and from the two the time to reach the scene's target relMSE
@@ -26,7 +27,7 @@
 # the ratio computed from it too (steadier on a loaded machine; on a quiet
 # one, wall-clock x 2 threads is about the processor time).  Without a
 # reference the ratios are those of the seconds per spp.
-# Last, cornell_diffuse_area is rendered by stage 07 at the spp predicted
+# Last, cornell_diffuse_area is rendered by the stage at the spp predicted
 # for relMSE 1e-3, to check the prediction.
 #
 # Mitsuba is looked for in build/mitsuba-venv (make it with
@@ -35,14 +36,15 @@
 # ); its LLVM variant needs an LLVM shared library of version 16 or later
 # (Debian: apt-get install libllvm19), found in /usr/lib or given by
 # DRJIT_LIBLLVM_PATH.  Without Mitsuba the script says so and prints
-# stage 07 alone.
+# the stage alone.
 #
 # Times, so never part of `make test`.  Run from the project root after
 # `make`:  sh tests/bench/pathtrace_bench.sh   (SPP, ROUNDS, SCENES to
 # change the defaults 32, 2 and the four scenes).
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
-render=$root/build/07_pathtrace/render
+stage=$(cd "$root/stages" && ls -d [0-9][0-9]_* | tail -n 1)
+render=${BUILDROOT:-$root/build/}$stage/render
 imgcmp=$root/build/tools/imgcmp
 python=$root/build/mitsuba-venv/bin/python
 spp=${SPP:-32}
@@ -102,7 +104,7 @@ target() {
 }
 
 # ours SCENE SPP SEED [OPTION...]: "wall_seconds cpu_seconds relmse" of one
-# stage-07 render.
+# render by the stage.
 ours() {
     scene=$1 spp_=$2 seed=$3
     shift 3
@@ -148,7 +150,7 @@ if [ -x "$python" ] && "$python" -c 'import mitsuba, numpy' 2>/dev/null; then
 fi
 if [ -z "$variants" ]; then
     echo "Mitsuba 3 is not available (build/mitsuba-venv; see the comment at the top of"
-    echo "tests/bench/pathtrace_bench.sh): stage 07 alone."
+    echo "tests/bench/pathtrace_bench.sh): $stage alone."
 else
     echo "Mitsuba 3 $("$python" -c 'import mitsuba; print(mitsuba.__version__)'):$variants" \
         "(LLVM: ${DRJIT_LIBLLVM_PATH:-none})"
@@ -157,7 +159,7 @@ fi
 # The references the repository lacks, rendered once by Mitsuba LLVM.  At
 # 4096 spp its own relMSE is spp x relMSE / 4096, 0.16 / 4096 = 4e-5 on the
 # bunny box, which adds under 2% to any 32-spp render's relMSE there
-# (2.5e-3 for stage 07, 4.9e-3 for Mitsuba, measured).
+# (2.5e-3 for stagelight, 4.9e-3 for Mitsuba, measured).
 for scene in $scenes; do
     case " $variants " in *" llvm_ad_rgb "*) ;; *) break ;; esac
     [ -z "$(reference "$scene")" ] || continue
@@ -173,22 +175,21 @@ for scene in $scenes; do
     fi
 done
 
-echo "256x256, 2 threads, $spp spp, best of $rounds interleaved rounds;" \
+echo "stagelight: $stage (the last stage); 256x256, 2 threads, $spp spp, best of $rounds interleaved rounds;" \
     "load average $(cut -d' ' -f1-3 /proc/loadavg)"
 
 for scene in $scenes; do
     : >"$work/rows"
     for round in $(seq 1 "$rounds"); do
-        echo "stagelight_07 $(ours "$scene" "$spp" "$round")" >>"$work/rows"
-        echo "stagelight_07_mis_off $(ours "$scene" "$spp" "$round" --mis off)" >>"$work/rows"
-        echo "stagelight_07_solid_angle $(ours "$scene" "$spp" "$round" --light-sampling solid-angle)" \
-            >>"$work/rows"
-        echo "stagelight_07_auto $(ours "$scene" "$spp" "$round" --light-sampling auto)" \
-            >>"$work/rows"
-        echo "stagelight_07_independent $(ours "$scene" "$spp" "$round" \
+        echo "stagelight $(ours "$scene" "$spp" "$round")" >>"$work/rows"
+        echo "stagelight_independent $(ours "$scene" "$spp" "$round" \
             --sampler independent --aa jitter)" >>"$work/rows"
-        echo "stagelight_07_former $(ours "$scene" "$spp" "$round" \
-            --sampler independent --aa jitter --rr-threshold 1)" >>"$work/rows"
+        echo "stagelight_rr_threshold_1 $(ours "$scene" "$spp" "$round" --rr-threshold 1)" \
+            >>"$work/rows"
+        echo "stagelight_tree_always $(ours "$scene" "$spp" "$round" --brute-force-max 0)" \
+            >>"$work/rows"
+        echo "stagelight_as_stage_07 $(ours "$scene" "$spp" "$round" --sampler independent \
+            --aa jitter --rr-threshold 1 --brute-force-max 0)" >>"$work/rows"
         for v in $variants; do
             r=$(mitsuba "$v" "$scene" "$spp" "$round")
             [ -z "$r" ] || echo "mitsuba_$v $r" >>"$work/rows"
@@ -203,7 +204,7 @@ for scene in $scenes; do
           if (!($1 in u) || $3 < u[$1]) u[$1] = $3
           if (!seen[$1]++) order[++k] = $1 }
         END {
-            ref = c["stagelight_07"] >= 0
+            ref = c["stagelight"] >= 0
             printf "| %-24s | %12s | %9s | %13s | %14s | %11s | %18s | %10s |\n", "renderer",
                 "spp x relMSE", "s per spp", "CPU s per spp",
                 ref ? "time to " t : "(no reference)", "time / ours",
@@ -217,12 +218,12 @@ for scene in $scenes; do
                 r = order[i]
                 printf "| %-24s | %12s | %9.4f | %13.4f | %14s | %10.2fx | %18s | %9.2fx |\n", r,
                     ref ? sprintf("%.4f", c[r] / n[r]) : "-", w[r] / spp, u[r] / spp,
-                    ref ? sprintf("%.2f s", tw[r]) : "-", tw[r] / tw["stagelight_07"],
-                    ref ? sprintf("%.2f s", tc[r]) : "-", tc[r] / tc["stagelight_07"]
+                    ref ? sprintf("%.2f s", tw[r]) : "-", tw[r] / tw["stagelight"],
+                    ref ? sprintf("%.2f s", tc[r]) : "-", tc[r] / tc["stagelight"]
             }
         }' "$work/rows"
     if [ "$scene" = cornell_diffuse_area ]; then
-        predict=$(awk -v spp="$spp" '$1 == "stagelight_07" { c += $4 * spp; n++ }
+        predict=$(awk -v spp="$spp" '$1 == "stagelight" { c += $4 * spp; n++ }
             END { printf "%d", c / n / 1e-3 + 0.999 }' "$work/rows")
     fi
 done
@@ -230,6 +231,6 @@ done
 if [ -n "${predict:-}" ]; then
     check=$(ours cornell_diffuse_area "$predict" 99)
     echo
-    echo "stage 07 on cornell_diffuse_area at the $predict spp predicted for relMSE 1e-3:" \
+    echo "$stage on cornell_diffuse_area at the $predict spp predicted for relMSE 1e-3:" \
         "$(echo "$check" | awk '{ printf "%.2f s (cpu %.2f s), relMSE %.2e", $1, $2, $3 }')"
 fi

@@ -135,7 +135,7 @@ base_args(bool centre)
 {
     static const char *const size[] = {"-W", WIDTH, "-H", HEIGHT, NULL};
     static const char *const one_centre_sample[] = {"--aa", "grid", "--spp", "1", NULL};
-    /* The independent sampler, not 07's default Sobol: after two renders
+    /* The independent sampler, not 08's default Sobol: after two renders
      * of one seed part at a rounding, the Sobol sampler still gives both
      * the same numbers (drawn per depth and use, not from a stream), so
      * the pair stays correlated and the paired t-test below finds
@@ -143,12 +143,15 @@ base_args(bool centre)
      * (a 1e-6 shift of a light in a plane: p 1e-21 at relMSE 2e-4). */
     static const char *const path_samples[] =
         {"--spp", "16", "--sampler", "independent", "--aa", "jitter", NULL};
+    static const char *const path_samples_07[] = {"--spp", "16", NULL};
     struct args a = {.n = 0};
     args_add(&a, size);
     if (stage() >= 6 && centre) {
         args_add(&a, one_centre_sample);
-    } else if (stage() >= 7) {
+    } else if (stage() >= 8) {
         args_add(&a, path_samples);
+    } else if (stage() >= 7) {
+        args_add(&a, path_samples_07);
     }
     return a;
 }

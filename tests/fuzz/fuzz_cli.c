@@ -50,6 +50,7 @@ int fuzz_cli_main_04(int argc, char **argv);
 int fuzz_cli_main_05(int argc, char **argv);
 int fuzz_cli_main_06(int argc, char **argv);
 int fuzz_cli_main_07(int argc, char **argv);
+int fuzz_cli_main_08(int argc, char **argv);
 
 /* The hooks fuzz_cli_stage.c puts in place of run_parse and run_load_scene. */
 bool fuzz_cli_run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage);
@@ -63,6 +64,7 @@ static int (*const stage_mains[])(int, char **) = {
     fuzz_cli_main_05,
     fuzz_cli_main_06,
     fuzz_cli_main_07,
+    fuzz_cli_main_08,
 };
 #define N_STAGES (sizeof stage_mains / sizeof stage_mains[0])
 

@@ -15,7 +15,7 @@
  * nothing is rendered or written.
  *
  * The Makefile links this object with the stage's other objects into one
- * relocatable object and keeps only FUZZ_CLI_ENTRY global: seven stages
+ * relocatable object and keeps only FUZZ_CLI_ENTRY global: eight stages
  * define the same functions and live side by side in one harness.
  */
 #define main FUZZ_CLI_ENTRY

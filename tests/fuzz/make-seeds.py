@@ -108,33 +108,35 @@ def main():
     write("pfm", "color_be.pfm", b"PF\n1 2\n1.0\n" + struct.pack(">6f", 0.5, 1, 2, 3, 4, 1e30))
     write("pfm", "grey_le.pfm", b"Pf\n3 1\n-2.5\n" + struct.pack("<3f", 0.25, 0.5, 0.75))
 
-    # Command lines: the stage's number as a digit ('1' to '7': the byte's
-    # value modulo 7 chooses the stage), then the arguments after "render",
-    # separated by NUL bytes.  The harness runs in a directory holding the
-    # scene a.scene and the image b.png (fuzz_cli.c).
+    # Command lines: the stage as one byte, then the arguments after
+    # "render", separated by NUL bytes.  The byte's value modulo the number
+    # of stages (8) chooses the stage: the digit '0' + n - 1 for stage n.
+    # The harness runs in a directory holding the scene a.scene and the
+    # image b.png (fuzz_cli.c).
     for name, stage, args in [
-        ("typical", "1", ["-o", "out.png", "-W", "320", "-H", "240", "--spp", "16", "-t", "2",
-                          "-q", "a.scene"]),
-        ("soft_shadows", "3", ["--shadow-samples", "4", "--stats", "s.json", "a.scene"]),
-        ("optics", "4", ["--max-depth", "8", "-o", "x.pfm", "a.scene"]),
-        ("bvh", "5", ["--no-bvh", "--adaptive", "4,16", "a.scene"]),
-        ("stage_knobs", "6", ["--aa=adaptive", "--aa-threshold", "0.1", "--adaptive", "4,16",
-                              "--max-depth=8", "--no-bvh", "--shadow-samples", "4", "s"]),
-        ("pathtrace", "7", ["--aa", "grid", "--spp", "5", "--sampler=sobol", "--rr-depth", "2",
-                            "--no-nee", "--no-rr", "--time", "2.5", "--brute-force-max", "0",
-                            "a.scene"]),
-        ("long_forms", "2", ["--output=x.pfm", "--width=64", "--seed", "9223372036854775807",
-                             "--stats", "s.json", "--strict", "--max-memory", "64", "scene"]),
-        ("same_output", "2", ["-o", "b.png", "--stats", "b.png", "a.scene"]),
-        ("output_is_scene", "5", ["-o", "b.png", "b.png"]),
-        ("no_directory", "6", ["-o", "missing/x.png", "a.scene"]),
-        ("unknown_format", "3", ["-o", "x.txt", "a.scene"]),
-        ("aov", "7", ["--aov", "depth,normal,id", "--mis", "off", "--light-sampling",
-                      "solid-angle", "-o", "x.pfm", "a.scene"]),
-        ("help", "7", ["--help"]),
-        ("version", "1", ["--version"]),
+        ("typical", 1, ["-o", "out.png", "-W", "320", "-H", "240", "--spp", "16", "-t", "2",
+                        "-q", "a.scene"]),
+        ("soft_shadows", 3, ["--shadow-samples", "4", "--stats", "s.json", "a.scene"]),
+        ("optics", 4, ["--max-depth", "8", "-o", "x.pfm", "a.scene"]),
+        ("bvh", 5, ["--no-bvh", "--adaptive", "4,16", "a.scene"]),
+        ("stage_knobs", 6, ["--aa=adaptive", "--aa-threshold", "0.1", "--adaptive", "4,16",
+                            "--max-depth=8", "--no-bvh", "--shadow-samples", "4", "s"]),
+        ("pathtrace", 7, ["--aa", "grid", "--spp", "4", "--rr-depth", "2", "--no-nee", "--no-rr",
+                          "--time", "2.5", "a.scene"]),
+        ("variance_reduction", 8, ["--aa", "sobol", "--spp", "5", "--sampler=sobol",
+                                   "--rr-threshold", "0.5", "--brute-force-max", "0", "a.scene"]),
+        ("long_forms", 2, ["--output=x.pfm", "--width=64", "--seed", "9223372036854775807",
+                           "--stats", "s.json", "--strict", "--max-memory", "64", "scene"]),
+        ("same_output", 2, ["-o", "b.png", "--stats", "b.png", "a.scene"]),
+        ("output_is_scene", 5, ["-o", "b.png", "b.png"]),
+        ("no_directory", 6, ["-o", "missing/x.png", "a.scene"]),
+        ("unknown_format", 3, ["-o", "x.txt", "a.scene"]),
+        ("aov", 8, ["--aov", "depth,normal,id", "--sampler", "independent", "-o", "x.pfm",
+                    "a.scene"]),
+        ("help", 7, ["--help"]),
+        ("version", 1, ["--version"]),
     ]:
-        write("cli", name, stage + "\0".join(args))
+        write("cli", name, chr(ord("0") + stage - 1) + "\0".join(args))
 
 if __name__ == "__main__":
     main()

@@ -200,7 +200,7 @@ grade_07_correct correct-07-diffuse cornell_diffuse_area
 grade_07_correct correct-07-specular cornell_specular_area
 
 if plant missing-cosine 07_pathtrace light.c -e \
-    's|vec3_scale(radiance, cos_surface \* weight / pdf)|vec3_scale(radiance, weight / pdf)|'; then
+    's|vec3_scale(light->radiance, cos_surface \* cos_light_area / dist2)|vec3_scale(light->radiance, cos_light_area / dist2)|'; then
     grade_07 missing-cosine "$work/missing-cosine/build/07_pathtrace/render" cornell_diffuse_area diffuse-lit
 else
     fail missing-cosine "the planted stage does not build"

@@ -19,7 +19,7 @@
 #                 samples, smooth pixels, relMSE limit 5e-5
 #   stage 06      cornell_diffuse_point_direct: two renders of 64 spp with
 #                 different seeds, block tests (noise or bias)
-#   stage 07      the three *_gi references: two renders of 64 spp each,
+#   stages 07-08  the three *_gi references: two renders of 64 spp each,
 #                 block tests
 # The pages with block tests share the family level 0.01 (lablib.sh's
 # page_alpha): one run of make grade on correct work says "biased" on any
@@ -132,7 +132,7 @@ case $nn in
         noise_pages 1
         page cornell_diffuse_point_direct cornell_diffuse_point 2 "--spp 64" --alpha "$alpha"
         ;;
-    07)
+    07 | 08)
         noise_pages 3
         for scene in cornell_diffuse_point cornell_diffuse_area cornell_specular_area; do
             page "${scene}_gi" "$scene" 2 "--spp 64" --alpha "$alpha"

@@ -149,12 +149,12 @@ TEST(one_shadow_ray_is_unbiased_in_the_penumbra)
 TEST(adaptive_sampling_saves_rays_where_the_probes_agree)
 {
     const char *scene = penumbra_scene(0.85, 0, 40, 48);
-    /* Stage 07's default Sobol sampler draws a fixed number of shadow rays
+    /* Stage 08's default Sobol sampler draws a fixed number of shadow rays
      * from stratified sequences, while the adaptive rays, whose count
      * varies, keep the random stream: all four renders take the
-     * independent sampler there, so that they draw alike (before stage 07
+     * independent sampler there, so that they draw alike (before stage 08
      * the NULL ends the options first). */
-    const char *sampler = atoi(STAGE_NAME) >= 7 ? "--sampler" : NULL;
+    const char *sampler = atoi(STAGE_NAME) >= 8 ? "--sampler" : NULL;
     const char *const ref_args[] =
         {"-s", "1", "--seed", "99", "--shadow-samples", "4096", sampler, "independent", NULL};
     const char *const full_args[] =

@@ -1,5 +1,5 @@
 /*
- * test_lowdisc.c - the Owen-scrambled Sobol points of lowdisc.h: the
+ * 08_lowdisc.c - the Owen-scrambled Sobol points of lowdisc.h (stage 08): the
  * first 2^m points of every scramble, and every aligned block of 2^m, are
  * a (0,m,2)-net (one point in each of the 2^m cells of every shape
  * 2^a x 2^(m-a)); the 1D points are stratified likewise; one point over
@@ -11,6 +11,19 @@
  */
 #include "check.h"
 #include "lowdisc.h"
+
+/* Point i of a sequence, from i (the stage reverses i once per sample). */
+static real
+point1(uint32_t i, uint64_t seed)
+{
+    return lowdisc_point1_reversed(lowdisc_reverse_bits(i), seed);
+}
+
+static void
+point2(uint32_t i, uint64_t seed, real *u, real *v)
+{
+    lowdisc_point2_reversed(lowdisc_reverse_bits(i), seed, u, v);
+}
 
 /* Whether points i0 .. i0 + 2^m - 1 of the scramble `seed` put exactly one
  * point in every cell of every 2^a x 2^(m-a) grid. */
@@ -25,7 +38,7 @@ is_net(uint32_t i0, int m, uint64_t seed)
         for (int i = 0; i < n; i++) {
             real u;
             real v;
-            lowdisc_point2(i0 + (uint32_t)i, seed, &u, &v);
+            point2(i0 + (uint32_t)i, seed, &u, &v);
             int cell = (int)(v * rows) * cols + (int)(u * cols);
             if (u < 0 || u >= 1 || v < 0 || v >= 1 || seen[cell]++) {
                 return false;
@@ -54,7 +67,7 @@ TEST(one_dimensional_points_are_stratified)
         for (int m = 0; m <= 10; m++) {
             unsigned char seen[1 << 10] = {0};
             for (int i = 0; i < (1 << m); i++) {
-                real u = lowdisc_point1((uint32_t)i, seed);
+                real u = point1((uint32_t)i, seed);
                 int cell = (int)(u * (1 << m));
                 failures += u < 0 || u >= 1 || seen[cell]++ > 0;
             }
@@ -77,9 +90,9 @@ TEST(a_point_is_uniform_over_seeds)
     for (uint64_t seed = 0; seed < SEEDS; seed++) {
         real u;
         real v;
-        lowdisc_point2(5, rng_mix64(seed), &u, &v);
+        point2(5, rng_mix64(seed), &u, &v);
         cells[(int)(v * 16) * 16 + (int)(u * 16)]++;
-        strata[(int)(lowdisc_point1(5, rng_mix64(seed)) * 64)]++;
+        strata[(int)(point1(5, rng_mix64(seed)) * 64)]++;
     }
     double chi2_cells = 0;
     double chi2_strata = 0;
@@ -102,7 +115,9 @@ TEST(sobol_dimensions_match_their_direction_numbers)
     for (uint32_t index = 0; index < 70000; index += 7) {
         uint32_t x;
         uint32_t y;
-        lowdisc_sobol2(index, &x, &y);
+        lowdisc_sobol2_reversed(index, &x, &y);
+        x = lowdisc_reverse_bits(x);
+        y = lowdisc_reverse_bits(y);
         /* Dimension 0: v_k = 2^-(k+1); dimension 1: v_0 = 1/2,
          * v_k = v_(k-1) xor v_(k-1) / 2. */
         uint32_t ex = 0;
@@ -127,8 +142,8 @@ TEST(seeds_give_different_points)
         real v1;
         real u2;
         real v2;
-        lowdisc_point2(i, 1, &u1, &v1);
-        lowdisc_point2(i, 2, &u2, &v2);
+        point2(i, 1, &u1, &v1);
+        point2(i, 2, &u2, &v2);
         same += u1 == u2 && v1 == v2;
     }
     CHECK(same == 0);
@@ -152,15 +167,15 @@ TEST(sequences_of_one_family_are_independent)
     for (uint64_t k = 0; k < KEYS; k++) {
         uint64_t key = rng_mix64(k);
         uint32_t i = (uint32_t)(k % 16);
-        real a = lowdisc_point1(i, lowdisc_family_seed(key, 256));
-        real b = lowdisc_point1(i, lowdisc_family_seed(key, 257));
+        real a = point1(i, lowdisc_family_seed(key, 256));
+        real b = point1(i, lowdisc_family_seed(key, 257));
         pairs_1d[(int)(a * 8) * 8 + (int)(b * 8)]++;
         real u1;
         real v1;
         real u2;
         real v2;
-        lowdisc_point2(i, lowdisc_family_seed(key, 258), &u1, &v1);
-        lowdisc_point2(i, lowdisc_family_seed(key, 259), &u2, &v2);
+        point2(i, lowdisc_family_seed(key, 258), &u1, &v1);
+        point2(i, lowdisc_family_seed(key, 259), &u2, &v2);
         pairs_2d[(int)(u1 * 8) * 8 + (int)(u2 * 8)]++;
         within[(int)(u1 * 8) * 8 + (int)(v1 * 8)]++;
     }

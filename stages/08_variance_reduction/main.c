@@ -1,0 +1,266 @@
+/*
+ * main.c - the stage's program: its options and its render call.  The steps
+ * around them (parse the command line, load the scene, write the image and
+ * the statistics, the exit status) are the same in every stage: run.h.
+ */
+#include <math.h>
+
+#include "render.h"
+#include "run.h"
+
+#define SUMMARY "Path tracing with variance reduction: Sobol points, a roulette threshold"
+
+/* The command line: the options every stage shares (cli.h), then this
+ * stage's own. */
+static bool
+parse_command_line(struct run *run, int argc, char **argv, struct renderer *renderer, bool *use_bvh)
+{
+    const struct option_spec stage_options[] = {
+        {
+            .name = "shadow-samples",
+            .kind = OPT_INT,
+            .dest = &renderer->shadow.samples,
+            .min = 1,
+            .max = 1 << 16,
+            .arg = "N",
+            .help = "shadow rays per area light per path vertex (default 1)",
+        },
+        {
+            .name = "adaptive",
+            .kind = OPT_INT_PAIR,
+            .dest = renderer->shadow.adaptive,
+            .min = 1,
+            .max = 1 << 16,
+            .arg = "K,M",
+            .help = "K probe rays per light; M more where they disagree (penumbra)",
+        },
+        {
+            .name = "max-depth",
+            .kind = OPT_INT,
+            .dest = &renderer->max_depth,
+            .min = 1,
+            .max = 1 << 16,
+            .arg = "N",
+            .help = "longest path, the camera ray included (default 65536: unbounded)",
+        },
+        {
+            .name = "no-bvh",
+            .kind = OPT_UNSET,
+            .dest = use_bvh,
+            .help = "test every primitive for every ray (the brute-force reference)",
+        },
+        {
+            .name = "rr-depth",
+            .kind = OPT_INT,
+            .dest = &renderer->rr_depth,
+            .min = 1,
+            .max = 1 << 16,
+            .arg = "N",
+            .help = "Russian roulette from the N-th ray on, camera ray = 1 (default 3)",
+        },
+        {
+            .name = "rr-threshold",
+            .kind = OPT_REAL,
+            .dest = &renderer->rr_threshold,
+            .min = 0.001,
+            .max = 1,
+            .arg = "T",
+            .help = "Russian roulette: survive with probability max(throughput) / T, at most "
+                    "0.95 (default 0.4)",
+        },
+        {
+            .name = "sampler",
+            .kind = OPT_CHOICE,
+            .dest = &renderer->sampler,
+            .choices = "independent|sobol",
+            .arg = "KIND",
+            .help = "random numbers of the paths: independent, sobol (default)",
+        },
+        {
+            .name = "brute-force-max",
+            .kind = OPT_INT,
+            .dest = &renderer->brute_force_max,
+            .min = 0,
+            .max = 1 << 30,
+            .arg = "N",
+            .help = "no BVH for scenes of at most N primitives (default 16; 0: always a BVH)",
+        },
+        {
+            .name = "aa",
+            .kind = OPT_CHOICE,
+            .dest = &renderer->aa,
+            .choices = "grid|jitter|adaptive|sobol",
+            .arg = "PATTERN",
+            .help = "where camera samples go in a pixel: grid, jitter, adaptive, sobol (default)",
+        },
+        {
+            .name = "aa-threshold",
+            .kind = OPT_REAL,
+            .dest = &renderer->aa_threshold,
+            .min = 0,
+            .max = 1,
+            .arg = "T",
+            .help = "adaptive: refine pixels whose probe contrast exceeds T (default 0.05)",
+        },
+        {
+            .name = "no-nee",
+            .kind = OPT_UNSET,
+            .dest = &renderer->nee,
+            .help = "no shadow rays to area lights: paths must hit them",
+        },
+        {
+            .name = "no-rr",
+            .kind = OPT_UNSET,
+            .dest = &renderer->rr,
+            .help = "no Russian roulette: paths end only at max-depth or when nothing reflects",
+        },
+        {
+            .name = "time",
+            .kind = OPT_REAL,
+            .dest = &renderer->time_limit,
+            .min = 0,
+            .max = 1e9,
+            .arg = "SECONDS",
+            .help = "stop after the pass that ends past this time budget",
+        },
+        {.name = NULL},
+    };
+    const struct cli_stage stage = {STAGE_NAME, SUMMARY, stage_options};
+    return run_parse(run, argc, argv, &stage);
+}
+
+/* Camera samples per pixel: --spp, 64 by default, or as many as --time
+ * allows; the grid pattern needs a square number. */
+static bool
+choose_spp(struct renderer *renderer, const struct options *opt, struct diag *err)
+{
+    int unlimited = 1 << 24;
+    renderer->spp = opt->spp ? opt->spp : renderer->time_limit > 0 ? unlimited : 64;
+    int k = (int)sqrt((double)renderer->spp);
+    if (renderer->aa == AA_GRID && k * k != renderer->spp) {
+        diag_set(
+            err,
+            NULL,
+            0,
+            0,
+            "--aa grid needs a square --spp (1, 4, 9, 16, ...), got %d",
+            renderer->spp);
+        return false;
+    }
+    return true;
+}
+
+/* Build the BVH (unless --no-bvh) and report its shape. */
+static bool
+build_acceleration(struct renderer *renderer, bool use_bvh, struct report *rep, struct diag *err)
+{
+    if (!use_bvh) {
+        return true;
+    }
+    double start = clock_seconds();
+    struct bvh *bvh = &renderer->world.bvh;
+    if (!bvh_build(bvh, &renderer->world, err)) {
+        return false;
+    }
+    rep->seconds_build = clock_seconds() - start;
+    report_set(rep, "bvh_nodes", bvh->n_nodes, true);
+    report_set(rep, "bvh_aside", bvh->n_aside, true);
+    report_set(rep, "bvh_depth", bvh->depth, true);
+    return true;
+}
+
+/* Samples per pixel in one pass: the largest divisor of spp up to 16, so
+ * a pass is short (a Ctrl-C loses little) yet stratified. */
+static int
+samples_per_pass(int spp)
+{
+    int per_pass = spp < 16 ? spp : 16;
+    while (spp % per_pass != 0) {
+        per_pass--;
+    }
+    return per_pass;
+}
+
+/* What the render passes (--aov, aov.h) ask of the stage: the ray through
+ * a point of the film, and the first surface along a ray. */
+static ray
+pass_camera_ray(const void *ctx, real film_x, real film_y)
+{
+    const struct renderer *renderer = ctx;
+    return camera_ray(&renderer->camera, film_x, film_y);
+}
+
+static bool
+pass_first_hit(const void *ctx, ray r, real t_max, struct aov_hit *out)
+{
+    const struct renderer *renderer = ctx;
+    struct stats uncounted = {0};
+    struct hit h;
+    if (!world_intersect(&renderer->world, r, t_max, &h, &uncounted)) {
+        return false;
+    }
+    *out = (struct aov_hit){h.t, h.p, h.n, h.prim, h.material};
+    return true;
+}
+
+/* spp camera rays through each pixel, in passes. */
+static int
+render(struct renderer *renderer, struct run *run)
+{
+    struct render_job job = run_job(run, renderer);
+    job.pass_pixel = render_pixel;
+    /* Progressive: the image is the mean of passes of a few samples per
+     * pixel, each pass a pattern of its own, so it can be stopped (Ctrl-C,
+     * --time) after any pass. */
+    int per_pass = samples_per_pass(renderer->spp);
+    job.passes = renderer->spp / per_pass;
+    job.time_limit = renderer->time_limit;
+    renderer->spp = per_pass;
+    renderer->seed = run->opt.seed;
+    renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
+    run->rep.extra_names[STAT_PENUMBRA] = "penumbra_pixels";
+    run->rep.extra_names[STAT_AA_REFINED] = "aa_refined_pixels";
+    run->aov = (struct aov_source){renderer, pass_camera_ray, pass_first_hit};
+    return run_render(run, &job, renderer->spp);
+}
+
+int
+main(int argc, char **argv)
+{
+    struct renderer renderer = {
+        .shadow = {.samples = 1},
+        .max_depth = 1 << 16,
+        .aa = AA_SOBOL,
+        .aa_threshold = (real)0.05,
+        .nee = true,
+        .rr = true,
+        .rr_depth = RR_MIN_DEPTH,
+        .rr_threshold = (real)RR_THRESHOLD,
+        .sampler = SAMPLER_SOBOL,
+        .brute_force_max = BRUTE_FORCE_MAX_PRIMS,
+    };
+    bool use_bvh = true;
+    struct run run;
+    if (!parse_command_line(&run, argc, argv, &renderer, &use_bvh)) {
+        return run.status;
+    }
+    struct diag err;
+    if (!choose_spp(&renderer, &run.opt, &err)) {
+        return run_fail(&run, &err, EXIT_USAGE);
+    }
+    if (!run_load_scene(&run, RENDER_FEATURES)) {
+        return run.status;
+    }
+    renderer.scene = &run.scene;
+    renderer.world = world_make(&run.scene);
+    /* On a few primitives testing them all costs less than descending a
+     * tree to them (docs/stages/08_variance_reduction.md). */
+    use_bvh = use_bvh && renderer.world.n_prims > renderer.brute_force_max;
+    if (!build_acceleration(&renderer, use_bvh, &run.rep, &err)) {
+        return run_fail(&run, &err, EXIT_RESOURCES);
+    }
+    int status = render(&renderer, &run);
+    bvh_free(&renderer.world.bvh);
+    run_free(&run);
+    return status;
+}
