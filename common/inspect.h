@@ -103,26 +103,6 @@ inspect_area_sample(struct stats *st, const struct area_light *light, vec3 y, ve
     }
 }
 
-/* A point y of an area light picked with probability `pick` among others
- * (1: sampled on its own), drawn with density pdf_solid_angle per
- * steradian: by solid angle, or uniformly over the light's area (then its
- * density per unit area, pick / area, is recorded too). */
-static inline void
-inspect_picked_sample(
-    struct stats *st,
-    const struct area_light *light,
-    real pick,
-    vec3 y,
-    real pdf_solid_angle,
-    bool by_area,
-    vec3 irradiance)
-{
-    if (st->trace) {
-        real pdf_area = by_area ? pick / area_light_area(light) : 0;
-        trace_log_light_sample(st->trace, y, pdf_area, pdf_solid_angle, irradiance);
-    }
-}
-
 /* Adaptive shadow sampling decided: of `probes` probe rays `blocked` were
  * blocked, and `more` samples follow (a penumbra). */
 static inline void
@@ -177,19 +157,6 @@ inspect_nee(struct stats *st, vec3 radiance)
 {
     if (st->trace) {
         trace_log_nee(st->trace, radiance);
-    }
-}
-
-/* Multiple importance sampling of a shadow ray against the bounce: the
- * densities per steradian with which the light sample and the BSDF would
- * draw its direction, and the weight given to the shadow ray; or, after
- * an emission found by a diffuse bounce, the bounce's weight (recorded
- * where pdf_bsdf > 0: elsewhere the weight is 1). */
-static inline void
-inspect_mis(struct stats *st, real pdf_light, real pdf_bsdf, real weight)
-{
-    if (st->trace) {
-        trace_log_mis(st->trace, pdf_light, pdf_bsdf, weight);
     }
 }
 

@@ -355,18 +355,6 @@ trace_log_nee(struct trace *t, vec3 radiance)
 }
 
 void
-trace_log_mis(struct trace *t, real pdf_light, real pdf_bsdf, real weight)
-{
-    if (!(pdf_bsdf > 0)) {
-        return; /* no MIS here: the shadow ray's weight is 1 */
-    }
-    struct trace_event *e = add_event(t, "mis", 3, SEG_NONE);
-    put_num(e, "pdf_light", pdf_light);
-    put_num(e, "pdf_bsdf", pdf_bsdf);
-    put_num(e, "weight", weight);
-}
-
-void
 trace_log_emission(struct trace *t, vec3 radiance, bool after_specular)
 {
     struct trace_event *e = add_event(t, "emission", 2, SEG_NONE);

@@ -102,7 +102,6 @@ void trace_log_bounce(
     vec3 beta_before,
     vec3 beta_after);
 void trace_log_nee(struct trace *t, vec3 radiance);
-void trace_log_mis(struct trace *t, real pdf_light, real pdf_bsdf, real weight);
 void trace_log_emission(struct trace *t, vec3 radiance, bool after_specular);
 void trace_log_roulette(struct trace *t, real q, real u, bool survived);
 void trace_log_end(struct trace *t, const char *why);
