@@ -94,7 +94,7 @@ renders() {
     rn_out=$3
     shift 3
     rendered=
-    for rn_seed in $(seq 1 "${n_renders:-2}"); do
+    for rn_seed in $(seq $((${seed0:-0} + 1)) $((${seed0:-0} + ${n_renders:-2}))); do
         "$rn_prog" -q -t 2 -W 256 -H 256 --seed "$rn_seed" "$@" -o "$rn_out.$rn_seed.pfm" \
             "$rn_scene" >>"$work/log" 2>&1 || return 1
         rendered="$rendered $rn_out.$rn_seed.pfm"
@@ -137,7 +137,7 @@ expect() {
 grade_renders() {
     renders "${4:-$build/07_pathtrace/render}" "$root/scenes/$2.scene" "$work/$1" --spp "$3" ||
         return 1
-    "$compare" -q --regions "$refs/$2.feature.pfm" "$work/$1.1.pfm" "$work/$1.2.pfm" \
+    "$compare" -q --regions "$refs/$2.feature.pfm" $rendered \
         "$refs/${2}_gi.pfm" >"$work/grade" 2>&1 || true
 }
 
@@ -159,7 +159,12 @@ grade_07() {
 # and roulette threshold 1).  A region flagged at 64 spp is then
 # judged as compare's hint says, by rendering again with 4 times the spp:
 # a bias keeps its size, a chance darkening fades (0 of 4 pairs flagged
-# at 256 spp).
+# at 256 spp).  The second look takes other seeds (3 and 4): with seeds 1
+# and 2 again its first 64 samples per pixel would be the first look's,
+# and so would the rare paths they missed (stage 07 since issue 27, whose
+# survivors of roulette carry full weight: seeds 1-2 flagged a block of
+# cornell_specular_area 5.0% darker at 256 spp, where 1,024 spp put it
+# 1.5% brighter than the reference).
 grade_07_correct() {
     if ! grade_renders "$1" "$2" 64; then
         fail "$1" "the render failed"
@@ -167,7 +172,11 @@ grade_07_correct() {
     fi
     if ! none_biased; then
         [ "$verbose" -eq 0 ] || sed "s|^|    $1 (64 spp; again at 256): |" "$work/grade"
-        if ! grade_renders "$1" "$2" 256; then
+        seed0=2
+        gr_ok=1
+        grade_renders "$1" "$2" 256 || gr_ok=0
+        seed0=0
+        if [ "$gr_ok" -eq 0 ]; then
             fail "$1" "the render failed"
             return
         fi
