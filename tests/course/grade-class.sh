@@ -88,7 +88,7 @@ files_key() {
 }
 
 # grade_task N - grade the Nth line of OUT/tasks ("NAME<TAB>DIR") with the
-# autograder's run_autograder (AUTOGRADER_ROOT: OUT/work/NAME, its
+# autograder's run_autograder (AUTOGRADER_ROOT: OUT/graders/NAME, its
 # submission DIR): students/NAME/ gets results/results.json, report.txt,
 # pages/, keep/, and, last, the row (result).
 grade_task() {
@@ -97,7 +97,7 @@ grade_task() {
     gt_name=$(printf '%s\n' "$gt_line" | cut -f 1)
     gt_dir=$(printf '%s\n' "$gt_line" | cut -f 2)
     gt_dest=$out/students/$gt_name
-    gt_top=$out/work/$gt_name
+    gt_top=$out/graders/$gt_name
     rm -rf "$gt_dest" "$gt_top"
     mkdir -p "$gt_dest/results" "$gt_top"
     trap 'rm -rf "$gt_top"' EXIT
