@@ -142,7 +142,16 @@ while [ "$k" -le "$tasks" ]; do
     part_done "$k" || missing="$missing $k"
     k=$((k + 1))
 done
-[ -z "$missing" ] || die "part(s)$missing not rendered (their tasks failed or died; rerun to render them)"
+if [ -n "$missing" ]; then
+    # The first failed Slurm task's own words (a bad --options fails every
+    # task alike); local tasks wrote theirs to stderr already.
+    k=${missing# }
+    k=${k%% *}
+    for log in "$out"/slurm/*_"$k".out; do
+        [ -s "$log" ] && sed "s|^|$PROG: task $k: |" "$log" | tail -n 5 >&2
+    done
+    die "part(s)$missing not rendered (their tasks failed or died; rerun to render them)"
+fi
 k=1
 parts=
 while [ "$k" -le "$tasks" ]; do

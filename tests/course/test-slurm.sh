@@ -23,7 +23,7 @@
 #               untouched handout, the solution and a bug: Gradescope's
 #               fields (results-check.py), scores 0, full and partial
 #   farm        farm-render over 4 tasks (64 spp of cornell_diffuse_area,
-#               the independent sampler, 256x256): the merged image's stats
+#               256x256, stage 07's independent sampler): the merged image's stats
 #               (64 spp from 4 inputs) and compare's verdict with one render
 #               of 64 spp, against the Mitsuba reference: consistent
 # Needs the project built (make).  Prints one line per check and
@@ -223,7 +223,7 @@ if [ -z "$why" ]; then ok "results: the untouched, solution and bug results.json
 # ---- farm: 4 tasks against one render ----------------------------------------------------
 F=$T/farm
 scene=$root/scenes/cornell_diffuse_area.scene
-opts="-W 256 -H 256 --sampler independent"
+opts="-W 256 -H 256"
 start=$(date +%s)
 "$COURSE_DIR/farm-render.sh" --root "$root" --out "$F" --options "$opts" \
     --sbatch "--cpus-per-task=1 --mem=512M --time=30" "$scene" 64 4 >"$T/farm.log" 2>&1
