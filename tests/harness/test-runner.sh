@@ -327,18 +327,29 @@ rm -f "$C/tests/stage/02_hang.c"
 
 # ---- parts: no result line, a lost exit status, leftovers in TMPDIR -----------
 cat >"$C/tests/harness/parts" <<'EOF'
-quiet   echo "no summary here"
-lying   echo "1 passed, 0 failed, 0 skipped"; exit 1
-leaky   mktemp "$TMPDIR/leftover.XXXXXX" >/dev/null; echo "1 passed, 0 failed, 0 skipped"
+quiet   every  echo "no summary here"
+lying   every  echo "1 passed, 0 failed, 0 skipped"; exit 1
+leaky   every  mktemp "$TMPDIR/leftover.XXXXXX" >/dev/null; echo "1 passed, 0 failed, 0 skipped"
+plainly plain  echo "2 passed, 0 failed, 0 skipped"
 EOF
 mk test
 if [ "$st" -ne 0 ] && grep -q '^FAIL quiet: exit 0, no result line' "$T/out" &&
     grep -q '^FAIL lying: exit 1 with no failure counted' "$T/out" &&
     grep -q '^FAIL tmpdir: the run left 1 file' "$T/out" && grep -q 'leftover\.' "$T/out" &&
+    [ "$(row plainly)" = "plainly                  2 passed, 0 failed, 0 skipped" ] &&
     [ "$(row 01_raycast)" = "$base01" ] && [ "$(row 02_fake)" = "$base02" ]; then
     ok parts
 else
     fail parts "exit $st" "$(said)"
+fi
+# A part of the plain build only is skipped, counted and named, in a variant.
+mk REAL=float test
+if grep -q '^skip plainly: the same in every build' "$T/out" &&
+    [ "$(row plainly)" = "plainly                  0 passed, 0 failed, 1 skipped" ] &&
+    grep -q '^FAIL lying' "$T/out"; then
+    ok plain-parts-skip-in-variants
+else
+    fail plain-parts-skip-in-variants "exit $st" "$(said)"
 fi
 : >"$C/tests/harness/parts"
 
