@@ -1,7 +1,7 @@
 /*
  * light.c - direct light from point lights, blocked by anything in between,
- * and from area lights, estimated with shadow rays to points sampled over
- * their area: soft shadows.  Glass dims a shadow ray instead of blocking it.
+ * and from area and sphere lights, sampled with shadow rays: soft shadows.
+ * Glass dims a shadow ray instead of blocking it.
  */
 #include "light.h"
 
@@ -26,6 +26,11 @@ point_irradiance(const struct hit *h, vec3 from, vec3 intensity)
 vec3
 sample_area_light(const struct area_light *light, real u, real v)
 {
+    /* A triangle is the half u + v <= 1: the other half folds onto it, keeping areas. */
+    if (light->triangle && u + v > 1) {
+        u = 1 - u;
+        v = 1 - v;
+    }
     /* LAB 03: point on an area light */
     return vec3_madd(vec3_madd(light->corner, light->edge1, u), light->edge2, v);
     /* END LAB */
@@ -56,102 +61,7 @@ visible(const struct world *w, const struct hit *h, vec3 to, struct stats *st)
     /* END LAB */
 }
 
-/* Glass boundaries a shadow ray may cross before it counts as blocked. */
-#define MAX_GLASS_CROSSINGS 32
-
 vec3
-transmittance(const struct world *w, const struct hit *h, vec3 to, struct stats *st)
-{
-    const struct scene *s = w->scene;
-    if (!(s->features & FEATURE_BIT(FEAT_GLASS))) {
-        return vec3_splat(visible(w, h, to, st) ? 1 : 0);
-    }
-    vec3 t = vec3_splat(1);
-    struct hit at = *h;
-    for (int crossing = 0; crossing < MAX_GLASS_CROSSINGS; crossing++) {
-        real t_max;
-        ray shadow = spawn_ray_to(&at, to, &t_max);
-        st->rays_shadow++;
-        if (!world_intersect(w, shadow, t_max, &at, st)) {
-            inspect_shadow(st, shadow, t_max, -1, 0);
-            return t;
-        }
-        inspect_shadow(st, shadow, t_max, at.prim, at.t);
-        const struct material *m = at.light < 0 ? &s->materials[at.material] : NULL;
-        if (!m || m->kind != MAT_GLASS) {
-            return vec3_splat(0);
-        }
-        real eta = at.front_face ? 1 / m->ior : m->ior;
-        real f = fresnel_dielectric(-vec3_dot(shadow.d, at.ng), eta);
-        t = vec3_scale(t, 1 - f);
-    }
-    return vec3_splat(0);
-}
-
-/* LAB 03: area light irradiance */
-/* One sample of the area light's irradiance at h from its point y:
- * L cos(theta) cos(theta') / r^2 * A (the estimator of E = integral over the
- * light of L cos cos' / r^2 dA, with y drawn with density 1/A), zero when
- * the light faces away or is blocked.  *blocked tells which of the two. */
-static vec3
-light_sample_irradiance(
-    const struct world *w,
-    const struct hit *h,
-    const struct area_light *light,
-    vec3 y,
-    struct stats *st,
-    bool *blocked)
-{
-    /* cross(edge1, edge2) is the light's unit normal times its area A
-     * (twice A for a triangle), so one product gives cos(theta') A, with
-     * no square root per sample. */
-    vec3 normal_area = vec3_cross(light->edge1, light->edge2);
-    if (light->triangle) {
-        normal_area = vec3_scale(normal_area, (real)0.5);
-    }
-    vec3 to_light = vec3_sub(y, h->p);
-    real dist2 = vec3_length2(to_light);
-    real dist = sqrt(dist2);
-    real cos_surface = vec3_dot(h->n, to_light) / dist;
-    real cos_light_area = area_light_cos(light, normal_area, vec3_neg(to_light)) / dist;
-    *blocked = false;
-    if (!(cos_surface > 0 && cos_light_area > 0)) {
-        inspect_area_sample(st, light, y, vec3_splat(0));
-        return vec3_splat(0);
-    }
-    vec3 through = transmittance(w, h, y, st);
-    *blocked = through.x < 1 || through.y < 1 || through.z < 1;
-    vec3 l = vec3_scale(light->radiance, cos_surface * cos_light_area / dist2);
-    vec3 e = vec3_mul(through, l);
-    inspect_area_sample(st, light, y, e);
-    return e;
-}
-
-/* For a triangle light, the half of the unit square beyond the diagonal
- * u + v = 1 folded onto the triangle's half (u, v -> 1 - u, 1 - v, a map
- * that keeps area): a uniform (u, v) gives a uniform point of the triangle,
- * and a set of cells covering the square covers the triangle evenly. */
-static void
-fold_into_triangle(const struct area_light *light, real *u, real *v)
-{
-    if (light->triangle && *u + *v > 1) {
-        *u = 1 - *u;
-        *v = 1 - *v;
-    }
-}
-
-/* One sample of a sphere light's irradiance at h: a direction drawn from
- * (u, v) in [0,1)^2 uniformly over the cone of directions the sphere
- * subtends, and L cos(theta) Omega for it, Omega = 2 pi (1 - cos(theta_max))
- * the cone's solid angle, sin(theta_max) = r / d at distance d from the
- * centre (the estimator of E = integral over the cone of L cos(theta) dw
- * with the direction drawn with density 1 / Omega; Shirley, Wang and
- * Zimmerman, "Monte Carlo Techniques for Direct Lighting Calculations",
- * 1996; pbrt 4ed, 6.2.4).  Every sample lands on the half of the sphere the
- * point sees, unlike points drawn over its whole area.  Zero when h is on or
- * inside the sphere (its light goes outward), when the direction is below
- * the surface's horizon, or when it is blocked: *blocked tells which. */
-static vec3
 sphere_sample_irradiance(
     const struct world *w,
     const struct hit *h,
@@ -196,50 +106,8 @@ sphere_sample_irradiance(
     return e;
 }
 
-/* A light the shadow rays sample: an area light or a sphere light (the
- * other NULL). */
-struct emitter {
-    const struct area_light *area;
-    const struct sphere_light *sphere;
-};
-
-/* The sum of n samples of the light's irradiance, one in each cell of a
- * k x m grid over [0,1)^2, the light's area or its cone of directions
- * (jittered stratification: each sample is unbiased, so their mean is, and
- * no two crowd together).  *n_blocked counts the samples the light was
- * blocked for. */
-static vec3
-sum_light_samples(
-    const struct world *w,
-    const struct hit *h,
-    const struct emitter *light,
-    int n,
-    struct rng *rng,
-    struct stats *st,
-    int *n_blocked)
-{
-    int k = strata_columns(n);
-    int m = n / k;
-    vec3 sum = vec3_splat(0);
-    for (int i = 0; i < n; i++) {
-        real u = ((real)(i % k) + rng_uniform(rng)) / (real)k;
-        real v = ((real)(i / k) + rng_uniform(rng)) / (real)m;
-        bool blocked;
-        if (light->area) {
-            fold_into_triangle(light->area, &u, &v);
-            vec3 y = sample_area_light(light->area, u, v);
-            sum = vec3_add(sum, light_sample_irradiance(w, h, light->area, y, st, &blocked));
-        } else {
-            sum = vec3_add(sum, sphere_sample_irradiance(w, h, light->sphere, u, v, st, &blocked));
-        }
-        *n_blocked += blocked;
-    }
-    return sum;
-}
-
 /* Clip a convex polygon to the half-space above the plane through p with
- * normal n (Sutherland and Hodgman, 1974).  Returns the new vertex count
- * (at most n_in + 1). */
+ * normal n (Sutherland and Hodgman, 1974): at most n_in + 1 vertices. */
 static int
 clip_above(const vec3 *in, int n_in, vec3 p, vec3 n, vec3 *out)
 {
@@ -259,28 +127,32 @@ clip_above(const vec3 *in, int n_in, vec3 p, vec3 n, vec3 *out)
     return n_out;
 }
 
-/* The irradiance the light gives h when nothing is in the way, in closed
- * form: for a polygon of constant radiance L seen from a point with normal n,
- *     E = L/2 * | sum_i theta_i n . g_i |,
- * theta_i the angle the edge (v_i, v_i+1) subtends and g_i the unit normal
- * of the plane through the point and that edge (Lambert, 1760; Arvo,
- * "Applications of Irradiance Tensors", 1995).  The part of the light below
- * the surface's horizon is clipped away first.  The absolute value makes it
- * hold on either side of the polygon, as a two-sided light needs. */
-static vec3
-unoccluded_irradiance(const struct hit *h, const struct area_light *light)
+bool
+unoccluded_irradiance(const struct hit *h, const struct emitter *light, vec3 *e)
 {
-    real side = vec3_dot(area_light_normal(light), vec3_sub(h->p, light->corner));
-    if (!light->two_sided && side <= 0) {
-        return vec3_splat(0); /* behind the one-sided light */
+    *e = vec3_splat(0);
+    const struct sphere_light *sphere = light->sphere;
+    if (sphere) {
+        vec3 axis = vec3_sub(sphere->center, h->p);
+        real dist = vec3_length(axis);
+        if (!(dist > sphere->radius)) {
+            return true; /* on or inside the sphere */
+        }
+        *e = point_irradiance(h, sphere->center, sphere_light_intensity(sphere));
+        /* Wholly above or below the horizon: |cos(alpha)| >= sin(theta_max). */
+        return fabs(vec3_dot(h->n, axis) / dist) >= sphere->radius / dist;
+    }
+    const struct area_light *area = light->area;
+    if (!area->two_sided && vec3_dot(area_light_normal(area), vec3_sub(h->p, area->corner)) <= 0) {
+        return true; /* behind the one-sided light */
     }
     vec3 corners[4] = {
-        light->corner,
-        vec3_add(light->corner, light->edge1),
-        vec3_add(vec3_add(light->corner, light->edge1), light->edge2),
-        vec3_add(light->corner, light->edge2)};
+        area->corner,
+        vec3_add(area->corner, area->edge1),
+        vec3_add(vec3_add(area->corner, area->edge1), area->edge2),
+        vec3_add(area->corner, area->edge2)};
     int n_corners = 4;
-    if (light->triangle) {
+    if (area->triangle) {
         corners[2] = corners[3];
         n_corners = 3;
     }
@@ -293,46 +165,114 @@ unoccluded_irradiance(const struct hit *h, const struct area_light *light)
         vec3 g = vec3_cross(a, b);
         real g_len = vec3_length(g);
         if (g_len > 0) {
-            real theta = atan2(g_len, vec3_dot(a, b));
-            sum += theta * vec3_dot(h->n, g) / g_len;
+            sum += atan2(g_len, vec3_dot(a, b)) * vec3_dot(h->n, g) / g_len;
         }
     }
-    return vec3_scale(light->radiance, fabs(sum) / 2);
+    *e = vec3_scale(area->radiance, fabs(sum) / 2);
+    return true;
 }
 
-/* The unoccluded irradiance of the light at h, in closed form, into *e.
- * For a sphere all above the surface's horizon (the angle alpha between
- * the normal and the centre at most 90 degrees - theta_max) it is
- * L pi sin^2(theta_max) cos(alpha): that of a point of intensity L pi r^2
- * at the centre.  False for a sphere the horizon cuts, whose closed form is
- * longer (Snyder, "Area Light Sources for Real-Time Graphics", 1996): the
- * caller samples it instead. */
-static bool
-unoccluded_closed_form(const struct hit *h, const struct emitter *light, vec3 *e)
+/* Glass boundaries a shadow ray may cross before it counts as blocked. */
+#define MAX_GLASS_CROSSINGS 32
+
+vec3
+transmittance(const struct world *w, const struct hit *h, vec3 to, struct stats *st)
 {
-    if (light->area) {
-        *e = unoccluded_irradiance(h, light->area);
-        return true;
+    const struct scene *s = w->scene;
+    if (!(s->features & FEATURE_BIT(FEAT_GLASS))) {
+        return vec3_splat(visible(w, h, to, st) ? 1 : 0);
     }
-    const struct sphere_light *sphere = light->sphere;
-    vec3 axis = vec3_sub(sphere->center, h->p);
-    real dist = vec3_length(axis);
-    if (!(dist > sphere->radius)) {
-        *e = vec3_splat(0); /* on or inside the sphere */
-        return true;
+    vec3 t = vec3_splat(1);
+    struct hit at = *h;
+    for (int crossing = 0; crossing < MAX_GLASS_CROSSINGS; crossing++) {
+        real t_max;
+        ray shadow = spawn_ray_to(&at, to, &t_max);
+        st->rays_shadow++;
+        if (!world_intersect(w, shadow, t_max, &at, st)) {
+            inspect_shadow(st, shadow, t_max, -1, 0);
+            return t;
+        }
+        inspect_shadow(st, shadow, t_max, at.prim, at.t);
+        const struct material *m = at.light < 0 ? &s->materials[at.material] : NULL;
+        if (!m || m->kind != MAT_GLASS) {
+            return vec3_splat(0);
+        }
+        real eta = at.front_face ? 1 / m->ior : m->ior;
+        real f = fresnel_dielectric(-vec3_dot(shadow.d, at.ng), eta);
+        t = vec3_scale(t, 1 - f);
     }
-    real cos_alpha = vec3_dot(h->n, axis) / dist;
-    real sin_max = sphere->radius / dist;
-    *e = point_irradiance(h, sphere->center, sphere_light_intensity(sphere));
-    return cos_alpha >= sin_max || cos_alpha <= -sin_max;
+    return vec3_splat(0);
 }
 
-/* Irradiance from one light.  Adaptive mode (as classic renderers do):
- * a few probe rays; if they agree, the point is taken as fully shadowed (0)
- * or fully lit (the exact unoccluded irradiance: no noise at all, where
- * there is a closed form); otherwise it is in a penumbra and gets more
- * samples, averaged with the probes.  The price is a bias where a thin
- * shadow slips between all the probes. */
+/* LAB 03: area light irradiance */
+/* One sample of the area light's irradiance at h from its point y (density 1/A):
+ * L cos(theta) cos(theta') / r^2 * A, zero if it faces away or is blocked (*blocked). */
+static vec3
+light_sample_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct area_light *light,
+    vec3 y,
+    struct stats *st,
+    bool *blocked)
+{
+    /* |edge1 x edge2| is A (twice A for a triangle): one product gives
+     * cos(theta') A, with no square root per sample. */
+    vec3 normal_area = vec3_cross(light->edge1, light->edge2);
+    if (light->triangle) {
+        normal_area = vec3_scale(normal_area, (real)0.5);
+    }
+    vec3 to_light = vec3_sub(y, h->p);
+    real dist2 = vec3_length2(to_light);
+    real dist = sqrt(dist2);
+    real cos_surface = vec3_dot(h->n, to_light) / dist;
+    real cos_light_area = area_light_cos(light, normal_area, vec3_neg(to_light)) / dist;
+    *blocked = false;
+    if (!(cos_surface > 0 && cos_light_area > 0)) {
+        inspect_area_sample(st, light, y, vec3_splat(0));
+        return vec3_splat(0);
+    }
+    vec3 through = transmittance(w, h, y, st);
+    *blocked = through.x < 1 || through.y < 1 || through.z < 1;
+    vec3 l = vec3_scale(light->radiance, cos_surface * cos_light_area / dist2);
+    vec3 e = vec3_mul(through, l);
+    inspect_area_sample(st, light, y, e);
+    return e;
+}
+
+/* The sum of n samples of the light, one jittered in each cell of a k x m grid
+ * (stratified: each still unbiased, none crowding); *n_blocked counts the blocked. */
+static vec3
+sum_light_samples(
+    const struct world *w,
+    const struct hit *h,
+    const struct emitter *light,
+    int n,
+    struct rng *rng,
+    struct stats *st,
+    int *n_blocked)
+{
+    int k = strata_columns(n);
+    int m = n / k;
+    vec3 sum = vec3_splat(0);
+    for (int i = 0; i < n; i++) {
+        real u = ((real)(i % k) + rng_uniform(rng)) / (real)k;
+        real v = ((real)(i / k) + rng_uniform(rng)) / (real)m;
+        bool blocked;
+        if (light->area) {
+            vec3 y = sample_area_light(light->area, u, v);
+            sum = vec3_add(sum, light_sample_irradiance(w, h, light->area, y, st, &blocked));
+        } else {
+            sum = vec3_add(sum, sphere_sample_irradiance(w, h, light->sphere, u, v, st, &blocked));
+        }
+        *n_blocked += blocked;
+    }
+    return sum;
+}
+
+/* Irradiance from one light: the mean of its samples.  Adaptive: if the probes
+ * agree, 0 (umbra) or the closed form (lit), else more samples (a penumbra),
+ * averaged with the probes; biased where a thin shadow slips between probes. */
 static vec3
 light_irradiance(
     const struct world *w,
@@ -349,12 +289,8 @@ light_irradiance(
     }
     int probes = sampling->adaptive[0];
     vec3 sum = sum_light_samples(w, h, light, probes, rng, st, &blocked);
-    if (blocked == probes) {
-        inspect_adaptive(st, probes, blocked, 0);
-        return vec3_splat(0);
-    }
-    vec3 exact;
-    if (blocked == 0 && unoccluded_closed_form(h, light, &exact)) {
+    vec3 exact = vec3_splat(0);
+    if (blocked == probes || (blocked == 0 && unoccluded_irradiance(h, light, &exact))) {
         inspect_adaptive(st, probes, blocked, 0);
         return exact;
     }
@@ -363,30 +299,6 @@ light_irradiance(
     inspect_adaptive(st, probes, blocked, more);
     sum = vec3_add(sum, sum_light_samples(w, h, light, more, rng, st, &blocked));
     return vec3_scale(sum, 1 / (real)(probes + more));
-}
-
-static vec3
-area_light_irradiance(
-    const struct world *w,
-    const struct hit *h,
-    const struct area_light *light,
-    const struct shadow_sampling *sampling,
-    struct rng *rng,
-    struct stats *st)
-{
-    return light_irradiance(w, h, &(struct emitter){.area = light}, sampling, rng, st);
-}
-
-static vec3
-sphere_light_irradiance(
-    const struct world *w,
-    const struct hit *h,
-    const struct sphere_light *light,
-    const struct shadow_sampling *sampling,
-    struct rng *rng,
-    struct stats *st)
-{
-    return light_irradiance(w, h, &(struct emitter){.sphere = light}, sampling, rng, st);
 }
 
 /* END LAB */
@@ -410,14 +322,14 @@ direct_irradiance(
         }
     }
     for (int i = 0; i < s->n_area_lights; i++) {
-        const struct area_light *light = &s->area_lights[i];
+        struct emitter light = {.area = &s->area_lights[i]};
         inspect_light(st, TRACE_AREA_LIGHT, i);
-        e = vec3_add(e, area_light_irradiance(w, h, light, sampling, rng, st));
+        e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
-        const struct sphere_light *light = &s->sphere_lights[i];
+        struct emitter light = {.sphere = &s->sphere_lights[i]};
         inspect_light(st, TRACE_SPHERE_LIGHT, i);
-        e = vec3_add(e, sphere_light_irradiance(w, h, light, sampling, rng, st));
+        e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     return e;
 }

@@ -29,6 +29,33 @@ struct shadow_sampling {
 /* The point of the light at (u, v) in [0,1)^2: uniform over its area. */
 vec3 sample_area_light(const struct area_light *light, real u, real v);
 
+/* A light the shadow rays sample: an area light or a sphere light (the other NULL). */
+struct emitter {
+    const struct area_light *area;
+    const struct sphere_light *sphere;
+};
+
+/* One sample of a sphere light's irradiance at h: a direction drawn from
+ * (u, v) uniformly over the cone the sphere subtends, and L cos(theta) Omega
+ * for it, Omega = 2 pi (1 - cos(theta_max)), sin(theta_max) = r / d (Shirley,
+ * Wang and Zimmerman 1996; pbrt 4ed, 6.2.4); *blocked: was its ray? */
+vec3 sphere_sample_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct sphere_light *light,
+    real u,
+    real v,
+    struct stats *st,
+    bool *blocked);
+
+/* The light's irradiance at h with nothing in the way, in closed form, into *e.
+ * A polygon of radiance L clipped to h's horizon: E = L/2 |sum_i theta_i n . g_i|,
+ * theta_i the angle its edge (v_i, v_i+1) subtends at h, g_i the unit normal of
+ * the plane through h and that edge (Lambert 1760; Arvo 1995, "Applications of
+ * Irradiance Tensors").  A sphere: pi L sin^2(theta_max) cos(alpha), that of a
+ * point of intensity pi L r^2 at its centre; false where the horizon cuts it. */
+bool unoccluded_irradiance(const struct hit *h, const struct emitter *light, vec3 *e);
+
 /* For --pixel --trace (inspect.h), called only when inspecting: record the
  * shadow ray and, when it is not clear, the nearest surface in its way
  * (found by a second, closest-hit query). */

@@ -43,8 +43,7 @@ struct world
 world_make(const struct scene *s)
 {
     int n_shapes = s->n_spheres + s->n_quads + s->n_triangles;
-    int n_lights = s->n_area_lights + s->n_sphere_lights;
-    return (struct world){.scene = s, .n_prims = n_shapes + n_lights};
+    return (struct world){.scene = s, .n_prims = n_shapes + s->n_area_lights + s->n_sphere_lights};
 }
 
 /*
@@ -158,28 +157,16 @@ intersect_triangle(vec3 p0, vec3 p1, vec3 p2, ray r, real t_max, real *t, real *
     return *u >= 0 && *v >= 0 && *u + *v <= 1 && *t > 0 && *t < t_max && spans_plane(e1, e2);
 }
 
-/* An area light's parallelogram, as a quad. */
 static struct quad
 light_quad(const struct area_light *light)
 {
     return (struct quad){light->corner, light->edge1, light->edge2, -1, light->loc.line};
 }
 
-/* A sphere light's surface, as a sphere. */
 static struct sphere
 light_sphere(const struct sphere_light *light)
 {
     return (struct sphere){light->center, light->radius, -1, light->loc.line};
-}
-
-/* An area light: its parallelogram, or for a triangle light the half of it
- * where the edge fractions u + v <= 1 (then u, v are barycentric, and
- * corner + u edge1 + v edge2 is the point either way). */
-static bool
-intersect_light(const struct area_light *light, ray r, real t_max, real *t, real *u, real *v)
-{
-    struct quad q = light_quad(light);
-    return intersect_quad(&q, r, t_max, t, u, v) && (!light->triangle || *u + *v <= 1);
 }
 
 inline bool
@@ -198,7 +185,10 @@ intersect_prim(const struct scene *s, int prim, ray r, real t_max, struct hit *o
         struct sphere sphere = light_sphere(&s->sphere_lights[prim - n_shapes - s->n_area_lights]);
         found = intersect_sphere(&sphere, r, t_max, &t);
     } else if (prim >= n_shapes) {
-        found = intersect_light(&s->area_lights[prim - n_shapes], r, t_max, &t, &u, &v);
+        /* A triangle light is the half u + v <= 1 of its parallelogram. */
+        const struct area_light *light = &s->area_lights[prim - n_shapes];
+        struct quad q = light_quad(light);
+        found = intersect_quad(&q, r, t_max, &t, &u, &v) && (!light->triangle || u + v <= 1);
     } else {
         const struct triangle *tri = &s->triangles[prim - s->n_spheres - s->n_quads];
         vec3 p0 = s->positions[tri->v[0]];
