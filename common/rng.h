@@ -68,16 +68,24 @@ rng_for_pixel(uint64_t seed, uint64_t pixel_index, uint64_t pass)
     return rng_make(start, pixel_index);
 }
 
-/* Uniform real in [0, 1).  The 24 (float) or 32 (double) top bits are used,
- * so the result is exactly representable and never rounds up to 1. */
+/* A 32-bit fraction x / 2^32 as a real in [0, 1): its 24 (float) or 32
+ * (double) top bits, so the result is exactly representable and never
+ * rounds up to 1. */
+static inline real
+rng_to_real(uint32_t x)
+{
+#ifdef REAL_IS_FLOAT
+    return (real)(x >> 8) * 0x1p-24f;
+#else
+    return (real)x * 0x1p-32;
+#endif
+}
+
+/* Uniform real in [0, 1). */
 static inline real
 rng_uniform(struct rng *r)
 {
-#ifdef REAL_IS_FLOAT
-    return (real)(rng_next_u32(r) >> 8) * 0x1p-24f;
-#else
-    return (real)rng_next_u32(r) * 0x1p-32;
-#endif
+    return rng_to_real(rng_next_u32(r));
 }
 
 /* Uniform integer in [0, n), n > 0, without modulo bias (Lemire 2019). */

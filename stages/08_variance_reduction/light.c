@@ -5,7 +5,6 @@
 #include "light.h"
 
 #include "inspect.h"
-#include "sampler.h"
 
 vec3
 point_irradiance(const struct hit *h, vec3 from, vec3 intensity)
@@ -64,6 +63,7 @@ vec3
 sphere_sample_irradiance(
     const struct world *w,
     const struct hit *h,
+    const struct shadow_sampling *sampling,
     const struct sphere_light *light,
     real u,
     real v,
@@ -99,7 +99,8 @@ sphere_sample_irradiance(
     vec3 y = vec3_madd(h->p, d, t);
     vec3 through = transmittance(w, h, y, st);
     *blocked = through.x < 1 || through.y < 1 || through.z < 1;
-    vec3 l = vec3_scale(light->radiance, cos_surface * 2 * PI * one_minus_cos_max);
+    real weight = mis_shadow_weight(sampling, 1 / (2 * PI * one_minus_cos_max), cos_surface);
+    vec3 l = vec3_scale(light->radiance, weight * cos_surface * 2 * PI * one_minus_cos_max);
     vec3 e = vec3_mul(through, l);
     inspect_light_sample(st, y, 0, 1 / (2 * PI * one_minus_cos_max), e);
     return e;
@@ -186,6 +187,7 @@ static vec3
 light_sample_irradiance(
     const struct world *w,
     const struct hit *h,
+    const struct shadow_sampling *sampling,
     const struct area_light *light,
     vec3 y,
     struct stats *st,
@@ -209,7 +211,10 @@ light_sample_irradiance(
     }
     vec3 through = transmittance(w, h, y, st);
     *blocked = through.x < 1 || through.y < 1 || through.z < 1;
-    vec3 l = vec3_scale(light->radiance, cos_surface * cos_light_area / dist2);
+    /* y's density per steradian: r^2 / (A cos(theta')), times its pick's probability. */
+    real pdf = light_pick_probability(w->scene, sampling, light) * dist2 / cos_light_area;
+    real weight = mis_shadow_weight(sampling, pdf, cos_surface);
+    vec3 l = vec3_scale(light->radiance, cos_surface * weight / pdf);
     vec3 e = vec3_mul(through, l);
     inspect_area_sample(st, light, y, e);
     return e;
@@ -237,17 +242,23 @@ sum_light_samples(
     for (int i = 0; i < n; i++) {
         real u;
         real v;
-        if (!sampler_light_numbers(sampling, number, i, n, &u, &v)) {
+        if (sampling->id.kind == SAMPLER_SOBOL && sampling->adaptive[0] == 0) {
+            struct sample_id shot = sampling->id; /* the n rays: consecutive points */
+            shot.index = shot.index * (uint32_t)n + (uint32_t)i;
+            sampler_2d(shot, sampling->depth, DRAW_LIGHT + number, rng, &u, &v);
+        } else {
             u = ((real)(i % k) + rng_uniform(rng)) / (real)k;
             v = ((real)(i / k) + rng_uniform(rng)) / (real)m;
         }
         bool blocked;
+        vec3 e;
         if (light->area) {
             vec3 y = sample_area_light(light->area, u, v);
-            sum = vec3_add(sum, light_sample_irradiance(w, h, light->area, y, st, &blocked));
+            e = light_sample_irradiance(w, h, sampling, light->area, y, st, &blocked);
         } else {
-            sum = vec3_add(sum, sphere_sample_irradiance(w, h, light->sphere, u, v, st, &blocked));
+            e = sphere_sample_irradiance(w, h, sampling, light->sphere, u, v, st, &blocked);
         }
+        sum = vec3_add(sum, e);
         *n_blocked += blocked;
     }
     return sum;
@@ -310,12 +321,23 @@ direct_irradiance(
     }
     for (int i = 0; i < s->n_area_lights; i++) {
         struct emitter light = {.area = &s->area_lights[i]};
+        if (light.area->triangle && sampling->pick_cdf) {
+            continue; /* one triangle is picked for all, below */
+        }
         inspect_light(st, TRACE_AREA_LIGHT, i);
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
         struct emitter light = {.sphere = &s->sphere_lights[i]};
         inspect_light(st, TRACE_SPHERE_LIGHT, i);
+        e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
+    }
+    if (sampling->pick_cdf) {
+        real u;
+        int group = DRAW_LIGHT + s->n_area_lights + s->n_sphere_lights;
+        sampler_2d(sampling->id, sampling->depth, group, rng, &u, &u);
+        struct emitter light = {.area = light_pick(s, sampling->pick_cdf, u)};
+        inspect_light(st, TRACE_AREA_LIGHT, (int)(light.area - s->area_lights));
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     return e;

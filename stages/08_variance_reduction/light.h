@@ -6,6 +6,7 @@
 
 #include "geometry.h"
 #include "rng.h"
+#include "sampler.h"
 #include "scene.h"
 #include "stats.h"
 #include "vec3.h"
@@ -17,14 +18,15 @@ vec3 point_irradiance(const struct hit *h, vec3 from, vec3 intensity);
 
 /* How area lights are sampled: `samples` shadow rays per light, or, when
  * adaptive[0] > 0, adaptive[0] probe rays and adaptive[1] more only where
- * the probes disagree (a penumbra).  lowdisc...: the Sobol sampler's
- * (sampler.c). */
+ * the probes disagree (a penumbra); the numbers of sample id at the
+ * depth-th vertex (sampler.h), MIS (mis.c), the light picker (picker.c). */
 struct shadow_sampling {
     int samples;
     int adaptive[2];
-    bool lowdisc;
-    uint64_t lowdisc_seed;
-    uint32_t lowdisc_index;
+    struct sample_id id;
+    int depth;
+    bool mis;
+    const real *pick_cdf;
 };
 
 /* The extra statistics counter: shading points that took the penumbra path. */
@@ -46,6 +48,7 @@ struct emitter {
 vec3 sphere_sample_irradiance(
     const struct world *w,
     const struct hit *h,
+    const struct shadow_sampling *sampling,
     const struct sphere_light *light,
     real u,
     real v,
@@ -81,5 +84,19 @@ vec3 direct_irradiance(
     const struct shadow_sampling *sampling,
     struct rng *rng,
     struct stats *st);
+
+/* mis.c: the weight of a shadow ray drawn with density pdf_light per
+ * steradian at cos_surface to the normal (1 without MIS). */
+real mis_shadow_weight(const struct shadow_sampling *sampling, real pdf_light, real cos_surface);
+
+/* picker.c: *cdf, the cumulative power of the triangle lights (NULL: none;
+ * false: out of memory); the light u in [0,1) picks; the probability that
+ * `light` is picked (1 for a light sampled on its own). */
+bool light_picker_build(const struct scene *s, real **cdf, struct diag *err);
+const struct area_light *light_pick(const struct scene *s, const real *cdf, real u);
+real light_pick_probability(
+    const struct scene *s,
+    const struct shadow_sampling *sampling,
+    const struct area_light *light);
 
 #endif /* LIGHT_H */

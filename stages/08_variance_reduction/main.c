@@ -4,11 +4,12 @@
  * the statistics, the exit status) are the same in every stage: run.h.
  */
 #include <math.h>
+#include <stdlib.h>
 
 #include "render.h"
 #include "run.h"
 
-#define SUMMARY "Path tracing with variance reduction: Sobol points, a roulette threshold"
+#define SUMMARY "Path tracing with variance reduction: Sobol points, MIS, a light picker"
 
 /* The command line: the options every stage shares (cli.h), then this
  * stage's own. */
@@ -65,8 +66,7 @@ parse_command_line(struct run *run, int argc, char **argv, struct renderer *rend
             .min = 0.001,
             .max = 1,
             .arg = "T",
-            .help = "Russian roulette: survive with probability max(throughput) / T, at most "
-                    "0.95 (default 0.4)",
+            .help = "roulette: survive with probability max(throughput) / T (default 0.4)",
         },
         {
             .name = "sampler",
@@ -89,9 +89,9 @@ parse_command_line(struct run *run, int argc, char **argv, struct renderer *rend
             .name = "aa",
             .kind = OPT_CHOICE,
             .dest = &renderer->aa,
-            .choices = "grid|jitter|adaptive|sobol",
+            .choices = "grid|jitter|adaptive",
             .arg = "PATTERN",
-            .help = "where camera samples go in a pixel: grid, jitter, adaptive, sobol (default)",
+            .help = "where camera samples go in a pixel: grid, jitter (default), adaptive",
         },
         {
             .name = "aa-threshold",
@@ -113,6 +113,18 @@ parse_command_line(struct run *run, int argc, char **argv, struct renderer *rend
             .kind = OPT_UNSET,
             .dest = &renderer->rr,
             .help = "no Russian roulette: paths end only at max-depth or when nothing reflects",
+        },
+        {
+            .name = "no-mis",
+            .kind = OPT_UNSET,
+            .dest = &renderer->shadow.mis,
+            .help = "no multiple importance sampling: a light a diffuse bounce hits adds nothing",
+        },
+        {
+            .name = "no-light-pick",
+            .kind = OPT_UNSET,
+            .dest = &renderer->pick_lights,
+            .help = "shadow rays to every emitting triangle, none picked by power",
         },
         {
             .name = "time",
@@ -208,7 +220,7 @@ static int
 render(struct renderer *renderer, struct run *run)
 {
     struct render_job job = run_job(run, renderer);
-    job.pass_pixel = render_pixel;
+    job.pixel = render_pixel;
     /* Progressive: the image is the mean of passes of a few samples per
      * pixel, each pass a pattern of its own, so it can be stopped (Ctrl-C,
      * --time) after any pass. */
@@ -216,7 +228,6 @@ render(struct renderer *renderer, struct run *run)
     job.passes = renderer->spp / per_pass;
     job.time_limit = renderer->time_limit;
     renderer->spp = per_pass;
-    renderer->seed = run->opt.seed;
     renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
     run->rep.extra_names[STAT_PENUMBRA] = "penumbra_pixels";
     run->rep.extra_names[STAT_AA_REFINED] = "aa_refined_pixels";
@@ -228,9 +239,9 @@ int
 main(int argc, char **argv)
 {
     struct renderer renderer = {
-        .shadow = {.samples = 1},
+        .shadow = {.samples = 1, .mis = true},
         .max_depth = 1 << 16,
-        .aa = AA_SOBOL,
+        .aa = AA_JITTER,
         .aa_threshold = (real)0.05,
         .nee = true,
         .rr = true,
@@ -238,6 +249,7 @@ main(int argc, char **argv)
         .rr_threshold = (real)RR_THRESHOLD,
         .sampler = SAMPLER_SOBOL,
         .brute_force_max = BRUTE_FORCE_MAX_PRIMS,
+        .pick_lights = true,
     };
     bool use_bvh = true;
     struct run run;
@@ -253,13 +265,22 @@ main(int argc, char **argv)
     }
     renderer.scene = &run.scene;
     renderer.world = world_make(&run.scene);
-    /* On a few primitives testing them all costs less than descending a
-     * tree to them (docs/stages/08_variance_reduction.md). */
+    /* Testing a few primitives costs less than a tree (docs/stages/08_*.md). */
     use_bvh = use_bvh && renderer.world.n_prims > renderer.brute_force_max;
+    /* MIS and the picker refine the fixed shadow rays (not the adaptive ones). */
+    bool fixed = renderer.nee && renderer.shadow.adaptive[0] == 0;
+    renderer.shadow.mis = renderer.shadow.mis && fixed;
+    real *pick_cdf = NULL;
+    if (renderer.pick_lights && fixed && !light_picker_build(&run.scene, &pick_cdf, &err)) {
+        return run_fail(&run, &err, EXIT_RESOURCES);
+    }
+    renderer.shadow.pick_cdf = pick_cdf;
     if (!build_acceleration(&renderer, use_bvh, &run.rep, &err)) {
+        free(pick_cdf);
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
     int status = render(&renderer, &run);
+    free(pick_cdf);
     bvh_free(&renderer.world.bvh);
     run_free(&run);
     return status;

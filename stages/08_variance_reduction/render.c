@@ -70,9 +70,8 @@ direct_light(
         sampling.samples = 0; /* area lights are left to the paths that hit them */
         sampling.adaptive[0] = 0;
     }
-    if (renderer->sampler == SAMPLER_SOBOL) {
-        sampler_for_lights(&sampling, path->id, path->depth);
-    }
+    sampling.id = path->id;
+    sampling.depth = path->depth;
     vec3 e = direct_irradiance(&renderer->world, h, &sampling, rng, st);
     return vec3_scale(vec3_mul(albedo, e), INV_PI);
 }
@@ -105,7 +104,8 @@ shade(
     const struct scene *s = renderer->scene;
     if (h->light >= 0) {
         /* Lights are black as surfaces (SCENES.md): the path ends here. */
-        vec3 l = vec3_mul(path->beta, emitted(renderer, h, path));
+        vec3 le = path->pdf_bsdf > 0 ? mis_emitted(renderer, h, path) : emitted(renderer, h, path);
+        vec3 l = vec3_mul(path->beta, le);
         inspect_emission(st, l, path->specular);
         path->beta = vec3_splat(0);
         return l;
@@ -125,7 +125,8 @@ shade(
     }
     struct bsdf_sample bs = {0};
     real u[3];
-    sampler_bounce_numbers(renderer->sampler, path->id, path->depth, m, rng, u);
+    sampler_2d(path->id, path->depth, DRAW_LOBE, rng, &u[0], &u[0]);
+    sampler_2d(path->id, path->depth, DRAW_DIRECTION, rng, &u[1], &u[2]);
     if (!sample_bsdf(m, albedo, h, r->d, u, &bs)) {
         inspect_end(st, "no bounce: nothing reflects here, or the direction is below the surface");
         path->beta = vec3_splat(0);
@@ -134,6 +135,9 @@ shade(
     inspect_bounce(st, bs.lobe, bs.d, bs.pdf, path->beta, vec3_mul(path->beta, bs.weight));
     path->beta = vec3_mul(path->beta, bs.weight);
     path->specular = bs.specular;
+    /* For MIS (mis.c): where a diffuse bounce left, and its density cos / pi. */
+    path->from = h->p;
+    path->pdf_bsdf = renderer->shadow.mis && !bs.specular ? vec3_dot(h->n, bs.d) * INV_PI : 0;
     *r = spawn_ray(h, bs.d);
     st->rays_secondary++;
     return l;
@@ -141,12 +145,11 @@ shade(
 
 /* Russian roulette (Arvo and Kirk, "Particle Transport and Image Synthesis",
  * 1990): past the first few bounces a path survives with probability q
- * taken from its throughput, q = max(beta) / threshold (at most
- * RR_MAX_SURVIVAL), and a survivor's throughput is divided by q, so the
- * expected value is unchanged while dim paths stop early.  Survivors carry
- * the throughput `threshold`, as weight windows do (Vorba and Krivanek,
- * "Adjoint-Driven Russian Roulette and Splitting", 2016).  Returns q (1
- * before min_depth). */
+ * taken from its throughput, q = max(beta) / threshold (at most RR_MAX_SURVIVAL), and a
+ * survivor's throughput is divided by q, so the expected value is unchanged
+ * while dim paths stop early.  Returns q (1 before min_depth).  Survivors
+ * carry `threshold`, as in weight windows (Vorba and Krivanek,
+ * "Adjoint-Driven Russian Roulette and Splitting", 2016). */
 static real
 russian_roulette(struct path *path, int min_depth, real threshold, real u)
 {
@@ -186,8 +189,8 @@ trace(
         inspect_hit(st, path.depth, r, &h);
         l = vec3_add(l, shade(renderer, &r, &h, &path, rng, st));
         if (renderer->rr) {
-            int kind = renderer->sampler;
-            real u = sampler_roulette_number(kind, path.id, path.depth, renderer->rr_depth, rng);
+            real u;
+            sampler_2d(path.id, path.depth, DRAW_ROULETTE, rng, &u, &u);
             real q = russian_roulette(&path, renderer->rr_depth, renderer->rr_threshold, u);
             inspect_roulette(st, q, u, !vec3_is_zero(path.beta));
         }
@@ -228,7 +231,6 @@ sum_samples(
     int px,
     int py,
     int pattern,
-    int first,
     int n,
     struct rng *rng,
     struct stats *st,
@@ -236,18 +238,16 @@ sum_samples(
     real *lum_max)
 {
     vec3 sum = vec3_splat(0);
+    /* The n samples' Sobol points: a scramble of their own (sampler.h). */
+    struct sample_id id = {renderer->sampler, rng_next_u32(rng), 0};
     for (int i = 0; i < n; i++) {
-        struct sample_id id = sample_id_make(renderer->seed, px, py, (uint32_t)(first + i));
         real dx;
         real dy;
-        if (pattern == AA_SOBOL) {
-            sampler_pixel_position(id, &dx, &dy);
-        } else {
-            sample_position(pattern, i, n, rng, &dx, &dy);
-        }
+        sample_position(pattern, i, n, rng, &dx, &dy);
         ray primary = camera_ray(&renderer->camera, (real)px + dx, (real)py + dy);
         st->rays_camera++;
         inspect_sample(st, i, (real)px + dx, (real)py + dy, primary);
+        id.index = (uint32_t)i;
         vec3 l = trace(renderer, primary, 1, id, rng, st);
         inspect_sample_done(st, l);
         *lum_min = fmin(*lum_min, luminance(l));
@@ -261,43 +261,33 @@ sum_samples(
  * where their contrast (max - min) / (max + min) exceeds the threshold - an
  * edge, a shadow boundary, a texture - the pixel gets all spp samples. */
 static vec3
-adaptive_pixel(
-    const struct renderer *renderer,
-    int px,
-    int py,
-    int first,
-    struct rng *rng,
-    struct stats *st)
+adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng, struct stats *st)
 {
     /* LAB 06: adaptive sampling */
     real lo = REAL_MAX;
     real hi = -REAL_MAX;
     int probes = renderer->spp < AA_PROBES ? renderer->spp : AA_PROBES;
-    vec3 sum = sum_samples(renderer, px, py, AA_JITTER, first, probes, rng, st, &lo, &hi);
+    vec3 sum = sum_samples(renderer, px, py, AA_JITTER, probes, rng, st, &lo, &hi);
     bool agree = !(hi - lo > renderer->aa_threshold * (hi + lo));
     if (agree || probes == renderer->spp) {
         return vec3_scale(sum, 1 / (real)probes);
     }
     st->extra[STAT_AA_REFINED]++;
     int rest = renderer->spp - probes;
-    sum = vec3_add(
-        sum,
-        sum_samples(renderer, px, py, AA_JITTER, first + probes, rest, rng, st, &lo, &hi));
+    sum = vec3_add(sum, sum_samples(renderer, px, py, AA_JITTER, rest, rng, st, &lo, &hi));
     return vec3_scale(sum, 1 / (real)renderer->spp);
     /* END LAB */
 }
 
 vec3
-render_pixel(const void *ctx, int px, int py, int pass, struct rng *rng, struct stats *st)
+render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
 {
     const struct renderer *renderer = ctx;
-    int first = pass * renderer->spp;
     if (renderer->aa == AA_ADAPTIVE) {
-        return adaptive_pixel(renderer, px, py, first, rng, st);
+        return adaptive_pixel(renderer, px, py, rng, st);
     }
     real lo = REAL_MAX;
     real hi = -REAL_MAX;
-    int n = renderer->spp;
-    vec3 sum = sum_samples(renderer, px, py, renderer->aa, first, n, rng, st, &lo, &hi);
+    vec3 sum = sum_samples(renderer, px, py, renderer->aa, renderer->spp, rng, st, &lo, &hi);
     return vec3_scale(sum, 1 / (real)renderer->spp);
 }

@@ -20,16 +20,14 @@
      | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS) | FEATURE_BIT(FEAT_BLEND) \
      | FEATURE_BIT(FEAT_CHECKER) | FEATURE_BIT(FEAT_ENVIRONMENT) | FEATURE_BIT(FEAT_SPHERE_LIGHT))
 
-/* Scenes of at most this many primitives are traced without a BVH
- * (--brute-force-max). */
+/* No BVH for scenes of at most this many primitives (--brute-force-max). */
 #define BRUTE_FORCE_MAX_PRIMS 16
 
 /* Russian roulette starts once a path has this many rays (camera ray = 1),
  * unless --rr-depth says otherwise. */
 #define RR_MIN_DEPTH 3
 
-/* The throughput Russian roulette's survivors carry (--rr-threshold;
- * russian_roulette() in render.c). */
+/* The throughput roulette's survivors carry (--rr-threshold). */
 #define RR_THRESHOLD 0.4
 
 /* Russian roulette's survival probability is at most this: a path whose
@@ -44,7 +42,6 @@ enum aa_pattern {
     AA_GRID, /* a regular k x k grid (spp = k^2) */
     AA_JITTER, /* one random sample in each cell of that grid */
     AA_ADAPTIVE, /* a few jittered samples; all spp only where they disagree */
-    AA_SOBOL, /* Owen-scrambled Sobol points (sampler.c): stratified at every scale */
 };
 
 /* Probe samples of adaptive sampling.  A pixel costs this many samples where
@@ -65,7 +62,6 @@ struct renderer {
     struct shadow_sampling shadow;
     int max_depth; /* longest chain of rays, the camera ray included */
     int spp; /* camera samples per pixel in one pass */
-    uint64_t seed; /* --seed: scrambles each pixel's Sobol points */
     int aa; /* enum aa_pattern */
     real aa_threshold;
     bool nee; /* next-event estimation: shadow rays to area lights */
@@ -74,17 +70,20 @@ struct renderer {
     real rr_threshold; /* ... survival max(beta) / rr_threshold (at most RR_MAX_SURVIVAL) */
     int sampler; /* enum sampler_kind */
     int brute_force_max; /* no BVH for scenes of at most this many primitives */
+    bool pick_lights; /* the emitting triangles picked by power (picker.c) */
     real time_limit; /* seconds; 0: none */
 };
 
 /* A path being traced: its throughput beta (the product of the sampling
- * weights so far), whether its last bounce was specular, its length, and
- * which sample it is. */
+ * weights so far), whether its last bounce was specular, and its length;
+ * its sample, and for MIS its last diffuse bounce's density and origin. */
 struct path {
     vec3 beta;
     bool specular;
     int depth;
     struct sample_id id;
+    real pdf_bsdf;
+    vec3 from;
 };
 
 /* One vertex of a path, where *r hit h: returns the light it adds to the
@@ -97,6 +96,9 @@ vec3 shade(
     struct path *path,
     struct rng *rng,
     struct stats *st);
+
+/* MIS (mis.c): the light at h, weighed against the shadow rays of the vertex the bounce left. */
+vec3 mis_emitted(const struct renderer *renderer, const struct hit *h, const struct path *path);
 
 /* Radiance arriving at r.o from direction -r.d, estimated by one random
  * path; r is the depth-th ray of its chain (the camera ray is 1), and none
@@ -111,7 +113,7 @@ vec3 trace(
 
 /* The driver's pixel function (driver.h): the mean radiance of spp camera
  * rays through the pixel's square, placed as the aa pattern says (a box
- * filter: SCENES.md's pixel value), the pass-th spp of its samples. */
-vec3 render_pixel(const void *ctx, int px, int py, int pass, struct rng *rng, struct stats *st);
+ * filter: SCENES.md's pixel value). */
+vec3 render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st);
 
 #endif /* RENDER_H */

@@ -3,12 +3,13 @@
 # 08_variance_reduction) converges on the Cornell scenes, beside Mitsuba 3
 # when it can be had; it names the stage it runs.
 #
-# For each scene, the stage with its defaults (the Sobol sampler, Russian
-# roulette threshold 0.4, no tree on small scenes) and with each of its
+# For each scene, the stage with its defaults (the Sobol sampler, MIS, the
+# light picker, roulette threshold 0.4, no tree on small scenes) and with each of its
 # refinements turned back to stage 07's way: the independent sampler
-# (--sampler independent --aa jitter), roulette's threshold 1
-# (--rr-threshold 1), the tree on every scene (--brute-force-max 0), and
-# all three at once (stage 07's path tracer): spp x relMSE
+# (--sampler independent), no MIS (--no-mis), shadow rays to every emitting
+# triangle (--no-light-pick), roulette's threshold 1 (--rr-threshold 1),
+# the tree on every scene (--brute-force-max 0), and all at once (stage
+# 07's path tracer): spp x relMSE
 # against Mitsuba's converged reference (a constant for an unbiased
 # estimator: relMSE falls as 1/spp), seconds per spp at 256x256 on 2
 # threads, and from the two the time to reach the scene's target relMSE
@@ -183,13 +184,16 @@ for scene in $scenes; do
     for round in $(seq 1 "$rounds"); do
         echo "stagelight $(ours "$scene" "$spp" "$round")" >>"$work/rows"
         echo "stagelight_independent $(ours "$scene" "$spp" "$round" \
-            --sampler independent --aa jitter)" >>"$work/rows"
+            --sampler independent)" >>"$work/rows"
+        echo "stagelight_no_mis $(ours "$scene" "$spp" "$round" --no-mis)" >>"$work/rows"
+        echo "stagelight_no_light_pick $(ours "$scene" "$spp" "$round" --no-light-pick)" \
+            >>"$work/rows"
         echo "stagelight_rr_threshold_1 $(ours "$scene" "$spp" "$round" --rr-threshold 1)" \
             >>"$work/rows"
         echo "stagelight_tree_always $(ours "$scene" "$spp" "$round" --brute-force-max 0)" \
             >>"$work/rows"
         echo "stagelight_as_stage_07 $(ours "$scene" "$spp" "$round" --sampler independent \
-            --aa jitter --rr-threshold 1 --brute-force-max 0)" >>"$work/rows"
+            --rr-threshold 1 --brute-force-max 0 --no-mis --no-light-pick)" >>"$work/rows"
         for v in $variants; do
             r=$(mitsuba "$v" "$scene" "$spp" "$round")
             [ -z "$r" ] || echo "mitsuba_$v $r" >>"$work/rows"

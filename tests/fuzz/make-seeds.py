@@ -123,7 +123,7 @@ def main():
                             "--max-depth=8", "--no-bvh", "--shadow-samples", "4", "s"]),
         ("pathtrace", 7, ["--aa", "grid", "--spp", "4", "--rr-depth", "2", "--no-nee", "--no-rr",
                           "--time", "2.5", "a.scene"]),
-        ("variance_reduction", 8, ["--aa", "sobol", "--spp", "5", "--sampler=sobol",
+        ("variance_reduction", 8, ["--no-mis", "--spp", "5", "--sampler=sobol",
                                    "--rr-threshold", "0.5", "--brute-force-max", "0", "a.scene"]),
         ("long_forms", 2, ["--output=x.pfm", "--width=64", "--seed", "9223372036854775807",
                            "--stats", "s.json", "--strict", "--max-memory", "64", "scene"]),

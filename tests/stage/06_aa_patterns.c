@@ -6,19 +6,16 @@
  * disagree), in every stage that offers --aa.  From stage 07 on a render
  * is made of passes of at most 16 samples, each pass a pattern of its own
  * (grid -s 64: four passes of one 4x4 grid); the pattern checks of grid
- * and jitter then take the spp of one pass (1, 4, 9, 16).  --aa sobol
- * (stage 08) draws point pass * spp + i of each pixel's sequence, one
- * sequence over all passes.
+ * and jitter then take the spp of one pass (1, 4, 9, 16).  (Stage 08's
+ * Sobol sampler leaves the pixel positions to the pattern.)
  *
  *  - Stratification (TESTING.md T19, Mitchell, "Consequences of Stratified
  *    Sampling in Graphics", SIGGRAPH 96): on pixels crossed by a straight
  *    edge, the mean squared error of jittered sampling falls about as
  *    N^-1.5, faster than the N^-1 of independent samples.  Measured over
  *    spp 4, 16, 64, 256 (from 07 on 1, 4, 9, 16) and 8 seeds; the fitted
- *    log-log slope must be below -1.3.  From stage 08 on Sobol (--aa sobol)
- *    must do the same over 4 to 256 spp.
- *  - Two seeds give uncorrelated errors (--aa sobol from 08 on: its
- *    scramble is random per seed; jitter before) and an unbiased image.
+ *    log-log slope must be below -1.3.
+ *  - Two seeds give uncorrelated errors (jitter) and an unbiased image.
  *  - Grid: with --aa grid --spp k^2 (k = 4, 5, 8, 12; from 07 on, one
  *    pass: 3, 4) a pixel is exactly the fraction of its k^2 cell centres
  *    ((i + 1/2) / k, (j + 1/2) / k) the light covers.
@@ -86,7 +83,7 @@ edge_error_slope(const char *pattern, double *mse_last)
 {
     static const int all_passes[] = {4, 16, 64, 256};
     static const int one_pass[] = {1, 4, 9, 16};
-    bool per_pass = atoi(STAGE_NAME) >= 7 && strcmp(pattern, "sobol") != 0;
+    bool per_pass = atoi(STAGE_NAME) >= 7;
     const int *spps = per_pass ? one_pass : all_passes;
 
     enum {
@@ -142,11 +139,9 @@ edge_error_slope(const char *pattern, double *mse_last)
     return sxy / sxx;
 }
 
-/* Jittered samples, and from stage 08 on Owen-scrambled Sobol points
- * (stratified at every power-of-two scale at once: Owen 1997, about
- * N^-1.5 for a discontinuity along a line, like jitter): on edge pixels
- * their error falls faster than independent samples'. */
-TEST(jitter_and_sobol_errors_fall_faster_than_independent_samples)
+/* Jittered samples (about N^-1.5 for a discontinuity along a line): on
+ * edge pixels their error falls faster than independent samples'. */
+TEST(jitter_errors_fall_faster_than_independent_samples)
 {
     double mse_jitter;
     double slope_jitter = edge_error_slope("jitter", &mse_jitter);
@@ -159,16 +154,9 @@ TEST(jitter_and_sobol_errors_fall_faster_than_independent_samples)
         slope_jitter < -1.3,
         "slope %.3f: the jittered samples are not stratified",
         slope_jitter);
-    if (atoi(STAGE_NAME) >= 8) {
-        double mse_sobol;
-        double slope = edge_error_slope("sobol", &mse_sobol);
-        printf("sobol: slope %.3f, MSE at 256 spp %.3g\n", slope, mse_sobol);
-        CHECK_MSG(slope < -1.3, "slope %.3f: the Sobol points are not stratified", slope);
-    }
 }
 
-/* Two seeds give independent patterns (Sobol scrambles from stage 08 on,
- * jitter before): on a 128x128 edge, the
+/* Two seeds give independent jitter patterns: on a 128x128 edge, the
  * errors of the two renders over the edge pixels are uncorrelated (a
  * correlation below 4 standard errors, 4 / sqrt(n)), while each is an
  * unbiased estimate (mean error within 4 standard errors of 0). */
@@ -176,7 +164,7 @@ TEST(renders_with_two_seeds_are_uncorrelated)
 {
     static const struct pathcheck_edge big = {128, 60.37, 65.81, 0.7};
     const char *scene = pathcheck_edge_scene("edge128.scene", &big);
-    const char *pattern = atoi(STAGE_NAME) >= 8 ? "sobol" : "jitter";
+    const char *pattern = "jitter";
     const char *const args[] = {"--aa", pattern, "--spp", "16", NULL};
     struct image a = {0};
     struct image b = {0};
@@ -533,7 +521,7 @@ TEST(adaptive_refines_only_the_edge)
 }
 
 TEST_MAIN(
-    TEST_ENTRY(jitter_and_sobol_errors_fall_faster_than_independent_samples),
+    TEST_ENTRY(jitter_errors_fall_faster_than_independent_samples),
     TEST_ENTRY(renders_with_two_seeds_are_uncorrelated),
     TEST_ENTRY(grid_samples_the_cell_centres),
     TEST_ENTRY(grid_aliases_where_jitter_does_not),

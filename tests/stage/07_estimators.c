@@ -5,7 +5,7 @@
  *
  *  - Russian roulette and next-event estimation are unbiased, and from
  *    stage 08 on the Sobol sampler and roulette's threshold: --no-rr,
- *    --no-nee and (08) --sampler independent --aa jitter --rr-threshold 1
+ *    --no-nee and (08) --sampler independent --rr-threshold 1 --no-mis
  *    converge to the default's image.  Two-sample tests: K renders
  *    of each (different seeds), per 16x16 block and channel and for the
  *    whole image, Welch's t-test of the block means (pathcheck_block_welch),
@@ -76,7 +76,7 @@ compare_switches(const char *scene, uint64_t seed)
     static const char *const no_rr[] = {"--no-rr", NULL};
     static const char *const no_nee[] = {"--no-nee", NULL};
     static const char *const plain[] =
-        {"--sampler", "independent", "--aa", "jitter", "--rr-threshold", "1", NULL};
+        {"--sampler", "independent", "--rr-threshold", "1", "--no-mis", "--no-light-pick", NULL};
     struct pathcheck_batches base;
     struct pathcheck_batches other;
     if (!render_set(scene, NULL, 16, seed, &base)) {

@@ -19,7 +19,7 @@
  *    With I = pi: L = a / (1 - a): 1 for a = 0.5, 4 for a = 0.8.  A
  *    one-sample t-test of the pixels (independent estimates of L) against
  *    it, Russian roulette on, with the independent sampler and (stage 08)
- *    with the Sobol sampler (--sampler sobol --aa sobol: each pixel
+ *    with the Sobol sampler (--sampler sobol: each pixel's pass
  *    scrambled on its own, so the pixels stay independent estimates).
  *  - Two seeds (of the Sobol sampler from 08 on) give uncorrelated errors
  *    in the closed sphere.
@@ -158,7 +158,7 @@ TEST(closed_sphere_interreflection)
         struct image img = {0};
         const char *stats = NULL;
         const char *const all[] =
-            {"--spp", "256", "--sampler", sampler, "--aa", i / 2 ? "sobol" : "jitter", NULL};
+            {"--spp", "256", "--sampler", sampler, NULL};
         const char *const plain[] = {"--spp", "256", NULL};
         const char *const *args = runs == 4 ? all : plain;
         if (!pathcheck_render(
@@ -206,7 +206,7 @@ TEST(closed_sphere_interreflection)
  * most of the variance, a correlation over pixels says little. */
 TEST(renders_with_two_seeds_are_uncorrelated)
 {
-    const char *const sobol[] = {"--spp", "4", "--sampler", "sobol", "--aa", "sobol", NULL};
+    const char *const sobol[] = {"--spp", "4", "--sampler", "sobol", NULL};
     const char *const plain[] = {"--spp", "4", NULL};
     const char *const *args = atoi(STAGE_NAME) >= 8 ? sobol : plain;
     struct image a = {0};
@@ -235,7 +235,7 @@ TEST(renders_with_two_seeds_are_uncorrelated)
     printf(
         "closed sphere, %s, 4 spp, seeds %llu and %llu: correlation of "
         "the errors over %d pixels %.4f (limit %.4f)\n",
-        atoi(STAGE_NAME) >= 8 ? "--sampler sobol --aa sobol" : "the independent sampler",
+        atoi(STAGE_NAME) >= 8 ? "--sampler sobol" : "the independent sampler",
         (unsigned long long)seed,
         (unsigned long long)seed + 1,
         n,

@@ -5,24 +5,35 @@
  * 2^a x 2^(m-a)); the 1D points are stratified likewise; one point over
  * many seeds is uniform (chi-square); the two Sobol dimensions match the
  * definition by direction numbers; seeds give different points; the
- * sequences of one family (lowdisc_family_seed(), one per use of a
+ * sequences of one family (family_seed(), one per use of a
  * sample) are independent of each other; the paired bit reversal reverses
  * each half.
  */
 #include "check.h"
 #include "lowdisc.h"
 
-/* Point i of a sequence, from i (the stage reverses i once per sample). */
+/* Point i of a 1D sequence: either coordinate of a 2D point (sampler.h). */
 static real
 point1(uint32_t i, uint64_t seed)
 {
-    return lowdisc_point1_reversed(lowdisc_reverse_bits(i), seed);
+    real u;
+    real v;
+    lowdisc_point2(i, seed, &u, &v);
+    return seed % 2 ? u : v;
 }
 
 static void
 point2(uint32_t i, uint64_t seed, real *u, real *v)
 {
-    lowdisc_point2_reversed(lowdisc_reverse_bits(i), seed, u, v);
+    lowdisc_point2(i, seed, u, v);
+}
+
+/* Sequence `counter` of a family keyed by key, as the sampler derives
+ * them (sampler_2d(): a Weyl step). */
+static uint64_t
+family_seed(uint64_t key, uint64_t counter)
+{
+    return key + counter * 0x9e3779b97f4a7c15u;
 }
 
 /* Whether points i0 .. i0 + 2^m - 1 of the scramble `seed` put exactly one
@@ -167,15 +178,15 @@ TEST(sequences_of_one_family_are_independent)
     for (uint64_t k = 0; k < KEYS; k++) {
         uint64_t key = rng_mix64(k);
         uint32_t i = (uint32_t)(k % 16);
-        real a = point1(i, lowdisc_family_seed(key, 256));
-        real b = point1(i, lowdisc_family_seed(key, 257));
+        real a = point1(i, family_seed(key, 256));
+        real b = point1(i, family_seed(key, 257));
         pairs_1d[(int)(a * 8) * 8 + (int)(b * 8)]++;
         real u1;
         real v1;
         real u2;
         real v2;
-        point2(i, lowdisc_family_seed(key, 258), &u1, &v1);
-        point2(i, lowdisc_family_seed(key, 259), &u2, &v2);
+        point2(i, family_seed(key, 258), &u1, &v1);
+        point2(i, family_seed(key, 259), &u2, &v2);
         pairs_2d[(int)(u1 * 8) * 8 + (int)(u2 * 8)]++;
         within[(int)(u1 * 8) * 8 + (int)(v1 * 8)]++;
     }
@@ -193,23 +204,10 @@ TEST(sequences_of_one_family_are_independent)
     CHECK(chi2[2] < 103.4);
 }
 
-TEST(reversing_a_pair_reverses_each_half)
-{
-    int wrong = 0;
-    for (uint64_t k = 0; k < 1000; k++) {
-        uint64_t x = rng_mix64(k);
-        uint64_t r = lowdisc_reverse_bits_pair(x);
-        wrong += (uint32_t)r != lowdisc_reverse_bits((uint32_t)(x >> 32))
-                 || (uint32_t)(r >> 32) != lowdisc_reverse_bits((uint32_t)x);
-    }
-    CHECK_MSG(wrong == 0, "%d of 1000 pairs reversed wrongly", wrong);
-}
-
 TEST_MAIN(
     TEST_ENTRY(first_points_and_aligned_blocks_are_nets),
     TEST_ENTRY(one_dimensional_points_are_stratified),
     TEST_ENTRY(a_point_is_uniform_over_seeds),
     TEST_ENTRY(sobol_dimensions_match_their_direction_numbers),
     TEST_ENTRY(seeds_give_different_points),
-    TEST_ENTRY(sequences_of_one_family_are_independent),
-    TEST_ENTRY(reversing_a_pair_reverses_each_half))
+    TEST_ENTRY(sequences_of_one_family_are_independent))

@@ -297,7 +297,7 @@ plan_pathtrace() { # 07: spp x NEE on/off x RR on/off; the other levers; max dep
                     "nee=on rr=on sampler=independent aa=jitter" "$n" 0
             done
         fi
-        if has "$st" --mis && area_scene "$sc"; then
+        if has "$st" --no-mis && area_scene "$sc"; then
             for n in $PT_SPP $PT_SPP_MAIN_EXTRA; do
                 emit_seeds "$(pt_seeds "$n")" "$st" "$sc" "spp=$n nee=on rr=on mis=off" "nee=on rr=on mis=off" "$n" 0
             done
@@ -402,7 +402,7 @@ knob_args() {
         sampler=*) args="$args --sampler ${k#*=}" ;;
         rrdepth=*) args="$args --rr-depth ${k#*=}" ;;
         rrthreshold=*) args="$args --rr-threshold ${k#*=}" ;;
-        mis=*) args="$args --mis ${k#*=}" ;;
+        mis=off) args="$args --no-mis" ;;
         light=*) args="$args --light-sampling ${k#*=}" ;;
         nee=off) args="$args --no-nee" ;;
         rr=off) args="$args --no-rr" ;;
