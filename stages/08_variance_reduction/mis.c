@@ -9,13 +9,10 @@
  */
 #include "render.h"
 
-/* f^2 / (f^2 + g^2), as 1 / (1 + (g/f)^2): neither square overflows. */
+/* f^2 / (f^2 + g^2) for f > 0, as 1 / (1 + (g/f)^2): neither square overflows. */
 static real
 power_heuristic(real f, real g)
 {
-    if (!(f > 0)) {
-        return 0;
-    }
     real ratio = g / f;
     return 1 / (1 + ratio * ratio);
 }
