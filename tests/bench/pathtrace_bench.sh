@@ -41,7 +41,8 @@
 #
 # Times, so never part of `make test`.  Run from the project root after
 # `make`:  sh tests/bench/pathtrace_bench.sh   (SPP, ROUNDS, SCENES to
-# change the defaults 32, 2 and the four scenes).
+# change the defaults 32, 2 and the four scenes; MIS pays on smallpt, the
+# light picker on cornell_gltf_area: SCENES="smallpt cornell_gltf_area").
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 stage=$(cd "$root/stages" && ls -d [0-9][0-9]_* | tail -n 1)
@@ -75,7 +76,8 @@ scene_file() {
 # (tests/reference/), or the one this script had Mitsuba render
 # (build/bench-references/); nothing when there is neither.
 reference() {
-    for f in "$root/tests/reference/${1}_gi.pfm" "$root/build/bench-references/${1}_gi.pfm"; do
+    for f in "$root/tests/reference/${1}_gi.pfm" "$root/build/bench-references/${1}_gi.pfm" \
+        "$root/build/bench-references/${1}_self_gi.pfm"; do
         if [ -f "$f" ]; then
             echo "$f"
             return
@@ -174,6 +176,19 @@ for scene in $scenes; do
         rm -f "$out.tmp.pfm"
         echo "  (failed: $(tail -n 1 "$work/mi.err"); $scene is timed only)"
     fi
+done
+
+# Still without a reference (no Mitsuba): the stage's own, at SELF_SPP (1024)
+# spp, good for comparing the stage's variants (each is unbiased; its noise
+# adds spp / SELF_SPP of a render's relMSE to every row alike), not Mitsuba.
+# It costs about 9 processor minutes on smallpt (512 x 384), once.
+for scene in $scenes; do
+    [ -z "$(reference "$scene")" ] || continue
+    mkdir -p "$root/build/bench-references"
+    out=$root/build/bench-references/${scene}_self_gi.pfm
+    echo "$scene: no reference; the stage renders its own (${SELF_SPP:-1024} spp, seed 7001)"
+    "$render" -q -t 2 --spp "${SELF_SPP:-1024}" --seed 7001 -o "$out.tmp.pfm" \
+        "$(scene_file "$scene")" && mv -f "$out.tmp.pfm" "$out"
 done
 
 echo "stagelight: $stage (the last stage); 256x256, 2 threads, $spp spp, best of $rounds interleaved rounds;" \
