@@ -362,6 +362,18 @@ EOF
 EOF
 }
 
+# reading-time.sh counts the lesson's words, comment words (a comment
+# line's "*" not one) and code lines of stage 01, then of each diff.
+test_reading_time() {
+    check reading-time/runs "$LAB_DIR/reading-time.sh" --root "$M"
+    if grep -qF '| 01_a: lesson page and code | 8 | 1 |' "$T/out" &&
+        grep -qF '| 01_a → 02_b: the diff | 11 | 7 |' "$T/out"; then
+        ok reading-time/counts
+    else
+        fail reading-time/counts "$(cat "$T/out")"
+    fi
+}
+
 test_make_lab() {
     H=$T/handout
     check make-lab/writes "$LAB_DIR/make-lab.sh" --strict --quiet --root "$M" 02 "$H"
@@ -753,6 +765,7 @@ if command -v git >/dev/null 2>&1; then
     test_diffstat
 fi
 mini_project
+test_reading_time
 test_make_lab
 if command -v git >/dev/null 2>&1; then
     test_diffs
