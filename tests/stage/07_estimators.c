@@ -10,7 +10,9 @@
  *    of each (different seeds), per 16x16 block and channel and for the
  *    whole image, Welch's t-test of the block means (pathcheck_block_welch),
  *    on cornell_diffuse_area (NEE of a small light) and
- *    cornell_specular_area (caustics, which only BSDF sampling finds).
+ *    cornell_specular_area (caustics, which only BSDF sampling finds); in
+ *    08, on cornell_gltf_area (two emitting triangles: the light picker
+ *    picks), the default against all refinements off.
  *  - --max-depth 2 is direct light only (Mitsuba's max_depth = 2: camera
  *    ray plus one segment to the light), with or without next-event
  *    estimation: both against tests/reference/cornell_diffuse_area_direct
@@ -45,10 +47,10 @@
 #endif
 #define BLOCK 16
 
-/* Per comparison: the blocks and the whole image, 3 channels each.  Six
+/* Per comparison: the blocks and the whole image, 3 channels each.  Seven
  * two-sample comparisons (08; four in 07, at the same level) and two
  * against the direct-light reference. */
-#define N_STAT_TESTS (8 * pathcheck_sets_agree_tests(SIZE, SIZE, BLOCK))
+#define N_STAT_TESTS (9 * pathcheck_sets_agree_tests(SIZE, SIZE, BLOCK))
 
 static double
 stat_level(void)
@@ -71,7 +73,7 @@ render_set(
 /* Compare the default with --no-rr, with --no-nee and (from stage 08 on)
  * with stage 07's sampler and roulette on one scene. */
 static void
-compare_switches(const char *scene, uint64_t seed)
+compare_switches(const char *scene, uint64_t seed, int first_variant)
 {
     static const char *const no_rr[] = {"--no-rr", NULL};
     static const char *const no_nee[] = {"--no-nee", NULL};
@@ -91,7 +93,7 @@ compare_switches(const char *scene, uint64_t seed)
      * too often (one block at p 4.7e-6 against the level 5.2e-6 in one of
      * six seeds on the specular box); at 64 spp they are near normal. */
     const int spp[3] = {16, 64, 16};
-    for (int v = 0; v < n_variants; v++) {
+    for (int v = first_variant; v < n_variants; v++) {
         if (!render_set(scene, variants[v], spp[v], seed + 100 * (v + 1), &other)) {
             CHECK(false);
             continue;
@@ -169,12 +171,22 @@ TEST(tree_and_brute_force_give_the_same_image)
 
 TEST(rr_and_nee_are_unbiased_diffuse)
 {
-    compare_switches("scenes/cornell_diffuse_area.scene", pathcheck_seed(7100));
+    compare_switches("scenes/cornell_diffuse_area.scene", pathcheck_seed(7100), 0);
 }
 
 TEST(rr_and_nee_are_unbiased_specular)
 {
-    compare_switches("scenes/cornell_specular_area.scene", pathcheck_seed(7100) + 1000);
+    compare_switches("scenes/cornell_specular_area.scene", pathcheck_seed(7100) + 1000, 0);
+}
+
+/* Stage 08's light picker (and its other refinements) where it picks: the
+ * two emitting triangles of cornell_gltf_area. */
+TEST(refinements_are_unbiased_gltf)
+{
+    if (atoi(STAGE_NAME) < 8) {
+        SKIP("stage 07 has no light picker");
+    }
+    compare_switches("scenes/cornell_gltf_area.scene", pathcheck_seed(7100) + 2000, 2);
 }
 
 TEST(max_depth_2_is_direct_light)
@@ -293,5 +305,6 @@ TEST_MAIN(
     TEST_ENTRY(tree_and_brute_force_give_the_same_image),
     TEST_ENTRY(rr_and_nee_are_unbiased_diffuse),
     TEST_ENTRY(rr_and_nee_are_unbiased_specular),
+    TEST_ENTRY(refinements_are_unbiased_gltf),
     TEST_ENTRY(max_depth_2_is_direct_light),
     TEST_ENTRY(path_length_is_bounded))
