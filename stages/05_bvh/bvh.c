@@ -1,26 +1,20 @@
 /*
- * bvh.c - the median-split bounding volume hierarchy: each node's
- * primitives split in halves at the median centroid along the axis where
- * the centroids spread most; traversed with Kay and Kajiya's slab test
- * (SIGGRAPH 1986), the nearer child first.
+ * bvh.c - the median-split bounding volume hierarchy: each node's primitives split in halves at the
+ * median centroid along the axis where the centroids spread most; traversed with Kay and Kajiya's
+ * slab test (SIGGRAPH 1986), the nearer child first.
  */
 #include "bvh.h"
 
-#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "geometry.h"
 
-/* Boxes are widened by this many REAL_EPSILONs of the scene's largest
- * coordinate against rounding (docs/stages/05_bvh.md, "Numerics"). */
-#define MARGIN_EPSILONS 256
+#define MARGIN (256 * REAL_EPSILON) /* of the scene's largest coordinate: boxes widen by it */
 
-static struct box
-box_empty(void)
-{
-    return (struct box){vec3_splat(REAL_MAX), vec3_splat(-REAL_MAX)};
-}
+static const struct box empty_box = {
+    {REAL_MAX, REAL_MAX, REAL_MAX},
+    {-REAL_MAX, -REAL_MAX, -REAL_MAX}};
 
 /* b grown to hold p (comparisons: fmin and fmax are calls into libm) */
 static struct box
@@ -38,14 +32,8 @@ box_add(struct box b, vec3 p)
 static struct box
 parallelogram_bounds(vec3 corner, vec3 edge1, vec3 edge2)
 {
-    struct box b = box_add(box_add(box_empty(), corner), vec3_add(corner, edge1));
+    struct box b = box_add(box_add(empty_box, corner), vec3_add(corner, edge1));
     return box_add(box_add(b, vec3_add(corner, edge2)), vec3_add(vec3_add(corner, edge1), edge2));
-}
-
-static struct box
-sphere_bounds(vec3 center, real radius)
-{
-    return (struct box){vec3_sub(center, vec3_splat(radius)), vec3_add(center, vec3_splat(radius))};
 }
 
 /* Numbered spheres, quads, triangles, area lights, sphere lights. */
@@ -56,8 +44,11 @@ prim_bounds(const struct world *w, int prim)
     int first_triangle = s->n_spheres + s->n_quads;
     int first_light = first_triangle + s->n_triangles;
     int first_sphere_light = first_light + s->n_area_lights;
-    if (prim < s->n_spheres) {
-        return sphere_bounds(s->spheres[prim].center, s->spheres[prim].radius);
+    if (prim < s->n_spheres || prim >= first_sphere_light) { /* centre +- radius */
+        int i = prim - first_sphere_light;
+        vec3 c = i >= 0 ? s->sphere_lights[i].center : s->spheres[prim].center;
+        vec3 r = vec3_splat(i >= 0 ? s->sphere_lights[i].radius : s->spheres[prim].radius);
+        return (struct box){vec3_sub(c, r), vec3_add(c, r)};
     }
     if (prim < first_triangle) {
         const struct quad *q = &s->quads[prim - s->n_spheres];
@@ -65,31 +56,11 @@ prim_bounds(const struct world *w, int prim)
     }
     if (prim < first_light) {
         const int *v = s->triangles[prim - first_triangle].v;
-        struct box b = box_add(box_add(box_empty(), s->positions[v[0]]), s->positions[v[1]]);
+        struct box b = box_add(box_add(empty_box, s->positions[v[0]]), s->positions[v[1]]);
         return box_add(b, s->positions[v[2]]);
     }
-    if (prim < first_sphere_light) {
-        const struct area_light *light = &s->area_lights[prim - first_light];
-        return parallelogram_bounds(light->corner, light->edge1, light->edge2);
-    }
-    const struct sphere_light *light = &s->sphere_lights[prim - first_sphere_light];
-    return sphere_bounds(light->center, light->radius);
-}
-
-/* Every primitive's centroid (a NaN one made -infinity by float_below);
- * returns the box around them all. */
-static struct box
-make_refs(const struct world *w, struct build_ref *refs)
-{
-    struct box all = box_empty();
-    for (int prim = 0; prim < w->n_prims; prim++) {
-        struct box b = prim_bounds(w, prim);
-        all = box_add(box_add(all, b.lo), b.hi);
-        vec3 c = vec3_scale(vec3_add(b.lo, b.hi), (real)0.5);
-        refs[prim] =
-            (struct build_ref){{float_below(c.x), float_below(c.y), float_below(c.z)}, prim};
-    }
-    return all;
+    const struct area_light *light = &s->area_lights[prim - first_light];
+    return parallelogram_bounds(light->corner, light->edge1, light->edge2);
 }
 
 /* LAB 05: median split */
@@ -97,18 +68,16 @@ make_refs(const struct world *w, struct build_ref *refs)
 static int
 widest_centroid_axis(const struct build_ref *refs, int n)
 {
-    struct box b = box_empty();
+    struct box b = empty_box;
     for (int i = 0; i < n; i++) {
         b = box_add(b, vec3_make(refs[i].centroid[0], refs[i].centroid[1], refs[i].centroid[2]));
     }
-    vec3 extent = vec3_sub(b.hi, b.lo);
-    int axis = extent.y > extent.x ? 1 : 0;
-    return extent.z > vec3_axis(extent, axis) ? 2 : axis;
+    vec3 e = vec3_sub(b.hi, b.lo);
+    return e.z > e.x && e.z > e.y ? 2 : e.y > e.x;
 }
 
-/* Move the refs of refs[lo, hi) whose key is below the pivot (or equal,
- * when or_equal) to the front and return where the others start: Lomuto's
- * partition without a branch on the key, which random keys mispredict. */
+/* Move the refs of refs[lo, hi) with a key below the pivot (or equal) to the front, return where
+ * the others start: Lomuto's partition, without a branch on the key (random keys mispredict). */
 static int
 partition(struct build_ref *refs, int lo, int hi, int axis, float pivot, bool or_equal)
 {
@@ -124,8 +93,7 @@ partition(struct build_ref *refs, int lo, int hi, int axis, float pivot, bool or
     return j;
 }
 
-/* Put at refs[k] what a sort by centroid[axis] would, none before it
- * greater, none after smaller (Hoare's FIND, 1961): split the range into
+/* Put at refs[k] what a sort by centroid[axis] would (Hoare's FIND, 1961): split the range into
  * keys below, equal to and above its middle one; keep the part holding k. */
 static void
 select_kth(struct build_ref *refs, int n, int k, int axis)
@@ -144,9 +112,8 @@ select_kth(struct build_ref *refs, int n, int k, int axis)
     }
 }
 
-/* Lay out the subtree over refs[begin, end) as the next nodes, depth first,
- * and return the box around its primitives; the node's is that box widened
- * by the margin and rounded outward to float. */
+/* Lay out the subtree over refs[begin, end) as the next nodes, depth first, and return the box
+ * around its primitives; the node's is that box widened by the margin, rounded outward to float. */
 static struct box
 build_subtree(
     struct bvh *bvh,
@@ -154,12 +121,10 @@ build_subtree(
     struct build_ref *refs,
     int begin,
     int end,
-    int depth,
     real margin)
 {
     struct bvh_node *node = &bvh->nodes[bvh->n_nodes++];
-    struct box b = box_empty();
-    bvh->depth = depth > bvh->depth ? depth : bvh->depth;
+    struct box b = empty_box;
     if (end - begin <= BVH_MAX_LEAF) {
         *node = (struct bvh_node){.index = (uint32_t)begin, .count = (uint16_t)(end - begin)};
         for (int i = begin; i < end; i++) {
@@ -170,9 +135,9 @@ build_subtree(
         int axis = widest_centroid_axis(refs + begin, end - begin);
         int mid = begin + (end - begin) / 2;
         select_kth(refs + begin, end - begin, mid - begin, axis);
-        b = build_subtree(bvh, w, refs, begin, mid, depth + 1, margin); /* the next node */
+        b = build_subtree(bvh, w, refs, begin, mid, margin); /* the next node */
         *node = (struct bvh_node){.index = (uint32_t)bvh->n_nodes, .axis = (uint8_t)axis};
-        struct box second = build_subtree(bvh, w, refs, mid, end, depth + 1, margin);
+        struct box second = build_subtree(bvh, w, refs, mid, end, margin);
         b = box_add(box_add(b, second.lo), second.hi);
     }
     for (int i = 0; i < 3; i++) {
@@ -183,36 +148,38 @@ build_subtree(
 }
 /* END LAB */
 
+/* The centroids (a NaN one made -infinity by float_below), then the tree. */
 bool
 bvh_build(struct bvh *bvh, const struct world *w, struct diag *err)
 {
     size_t n = (size_t)w->n_prims;
-    *bvh = (struct bvh){.nodes = NULL};
-    if (n > 0 && w->n_prims <= INT_MAX / 2) { /* 2n - 1 nodes at most; n_nodes is an int */
-        bvh->nodes = malloc((2 * n - 1) * sizeof *bvh->nodes);
-        bvh->prims = malloc(n * sizeof *bvh->prims);
-    }
-    struct build_ref *refs = bvh->prims ? malloc(n * sizeof *refs) : NULL;
-    if (n > 0 && (!refs || !bvh->nodes)) {
+    *bvh = (struct bvh){.n_prims = w->n_prims};
+    bool fits = n > 0 && n <= (size_t)1 << 30; /* 2n - 1 nodes at most; n_nodes is an int */
+    bvh->nodes = fits ? malloc((2 * n - 1) * sizeof *bvh->nodes) : NULL;
+    bvh->prims = fits ? malloc(n * sizeof *bvh->prims) : NULL;
+    struct build_ref *refs = fits ? malloc(n * sizeof *refs) : NULL;
+    if (n > 0 && (!bvh->nodes || !bvh->prims || !refs)) {
         diag_set(err, NULL, 0, 0, "out of memory building a BVH over %d primitives", w->n_prims);
         free(refs);
         bvh_free(bvh);
         return false;
     }
-    bvh->n_prims = w->n_prims;
-    struct box all = make_refs(w, refs);
+    struct box all = empty_box;
+    for (int p = 0; p < w->n_prims; p++) {
+        struct box b = prim_bounds(w, p);
+        all = box_add(box_add(all, b.lo), b.hi);
+        vec3 c = vec3_scale(vec3_add(b.lo, b.hi), (real)0.5);
+        refs[p] = (struct build_ref){{float_below(c.x), float_below(c.y), float_below(c.z)}, p};
+    }
     bvh->n_aside = set_aside(w, refs, all);
     real scale = fmax(vec3_max_comp(vec3_abs(all.lo)), vec3_max_comp(vec3_abs(all.hi)));
     if (bvh->n_aside < bvh->n_prims) {
-        real margin = scale * (MARGIN_EPSILONS * REAL_EPSILON);
-        build_subtree(bvh, w, refs, bvh->n_aside, bvh->n_prims, 1, margin);
+        build_subtree(bvh, w, refs, bvh->n_aside, bvh->n_prims, scale * MARGIN);
     }
     for (int slot = 0; slot < bvh->n_prims; slot++) {
         bvh->prims[slot] = refs[slot].prim;
     }
     free(refs);
-    struct bvh_node *nodes = realloc(bvh->nodes, (size_t)(bvh->n_nodes + 1) * sizeof *nodes);
-    bvh->nodes = nodes ? nodes : bvh->nodes; /* the nodes not needed given back */
     return true;
 }
 
@@ -225,43 +192,34 @@ bvh_free(struct bvh *bvh)
 }
 
 /* LAB 05: BVH traversal */
-/* A query: the ray, prepared for slab tests, and the closest hit so far.
- * As brute force, ties go to the lowest number: after a hit at t, the tree
- * tests primitives up to the next real above t (t_prim), boxes up to t. */
+/* A query: the ray, prepared for slab tests, and the closest hit so far.  As brute force, ties go
+ * to the lowest number: after a hit at t, primitives are tested up to the next real above t. */
 struct query {
-    const struct bvh *bvh;
-    const struct scene *scene;
+    const struct world *w;
     ray r;
     real o[3];
     real inv_d[3]; /* 1/d within +-REAL_MAX: no 0 * inf (docs/stages/05_bvh.md, "Numerics") */
-    bool enters_hi[3]; /* inv_d < 0: the ray enters a slab through hi */
+    bool enters_hi[3]; /* d < 0: the ray enters a slab through hi */
     bool any, found; /* any: stop at the first hit */
     real t_box, t_prim;
     struct hit *out;
     uint64_t visits, tests;
 };
 
-/* Narrow [*t_near, *t_far] to the t where the ray is in the slab lo <= x <=
- * hi of axis i: between (lo - o) / d and (hi - o) / d. */
-static inline void
-clip_slab(real lo, real hi, const struct query *q, int i, real *t_near, real *t_far)
-{
-    real t_enter = ((q->enters_hi[i] ? hi : lo) - q->o[i]) * q->inv_d[i];
-    real t_leave = ((q->enters_hi[i] ? lo : hi) - q->o[i]) * q->inv_d[i];
-    *t_near = t_enter > *t_near ? t_enter : *t_near;
-    *t_far = t_leave < *t_far ? t_leave : *t_far;
-}
-
-/* Whether the ray meets node id's box at some t in [0, t_box], and where. */
+/* The slab test: whether the ray is, for some t in [0, t_box], in each axis's slab lo <= x <= hi
+ * of node id's box (between (lo - o) / d and (hi - o) / d), and where it enters the box. */
 static inline bool
-ray_box_entry(const struct query *q, uint32_t id, real *entry)
+meets_box(const struct query *q, uint32_t id, real *entry)
 {
-    const struct bvh_node *node = &q->bvh->nodes[id];
+    const struct bvh_node *node = &q->w->bvh.nodes[id];
     real t_near = 0;
     real t_far = q->t_box;
-    clip_slab(node->lo[0], node->hi[0], q, 0, &t_near, &t_far);
-    clip_slab(node->lo[1], node->hi[1], q, 1, &t_near, &t_far);
-    clip_slab(node->lo[2], node->hi[2], q, 2, &t_near, &t_far);
+    for (int i = 0; i < 3; i++) {
+        real t_enter = ((q->enters_hi[i] ? node->hi[i] : node->lo[i]) - q->o[i]) * q->inv_d[i];
+        real t_leave = ((q->enters_hi[i] ? node->lo[i] : node->hi[i]) - q->o[i]) * q->inv_d[i];
+        t_near = t_enter > t_near ? t_enter : t_near;
+        t_far = t_leave < t_far ? t_leave : t_far;
+    }
     *entry = t_near;
     return t_near <= t_far;
 }
@@ -273,12 +231,9 @@ test_slots(struct query *q, uint32_t first, uint32_t end)
     struct hit h;
     for (uint32_t slot = first; slot < end && !(q->any && q->found); slot++) {
         q->tests++;
-        bool hit = intersect_prim(q->scene, q->bvh->prims[slot], q->r, q->t_prim, &h);
+        bool hit = intersect_prim(q->w->scene, q->w->bvh.prims[slot], q->r, q->t_prim, &h);
         if (hit && (!q->found || h.t < q->out->t || h.prim < q->out->prim)) {
-            q->out->t = h.t;
-            q->out->u = h.u;
-            q->out->v = h.v;
-            q->out->prim = h.prim;
+            *q->out = h;
             q->found = true;
             q->t_box = h.t;
             q->t_prim = nextafter(h.t, (real)INFINITY);
@@ -286,13 +241,13 @@ test_slots(struct query *q, uint32_t first, uint32_t end)
     }
 }
 
-/* A leaf's primitives, or the children whose boxes the ray meets, the one
- * on the side of the split it comes from first (the first child holds the
- * lower centroids), the other unless it starts beyond a hit. */
+/* A leaf's primitives, or the children whose boxes the ray meets, the one on the side of the split
+ * it comes from first (the first holds the lower centroids), the other (kept on the call stack)
+ * unless it starts beyond a hit. */
 static void
 visit(struct query *q, uint32_t id)
 {
-    const struct bvh_node *node = &q->bvh->nodes[id];
+    const struct bvh_node *node = &q->w->bvh.nodes[id];
     if (node->count > 0) {
         test_slots(q, node->index, node->index + node->count);
         return;
@@ -300,7 +255,7 @@ visit(struct query *q, uint32_t id)
     bool second_first = q->enters_hi[node->axis];
     uint32_t child[2] = {second_first ? node->index : id + 1, second_first ? id + 1 : node->index};
     real t[2];
-    bool hit[2] = {ray_box_entry(q, child[0], &t[0]), ray_box_entry(q, child[1], &t[1])};
+    bool hit[2] = {meets_box(q, child[0], &t[0]), meets_box(q, child[1], &t[1])};
     q->visits += 2;
     for (int i = 0; i < 2 && !(q->any && q->found); i++) {
         if (hit[i] && t[i] <= q->t_box) {
@@ -310,26 +265,19 @@ visit(struct query *q, uint32_t id)
 }
 
 bool
-bvh_intersect(
-    const struct bvh *bvh,
-    const struct world *w,
-    ray r,
-    real t_max,
-    bool any,
-    struct hit *out,
-    struct stats *st)
+bvh_intersect(const struct world *w, ray r, real t_max, bool any, struct hit *out, struct stats *st)
 {
-    struct query q = {bvh, w->scene, r, .any = any, .t_box = t_max, .t_prim = t_max, .out = out};
+    struct query q = {w, r, .any = any, .t_box = t_max, .t_prim = t_max, .out = out};
     for (int i = 0; i < 3; i++) {
         real d = vec3_axis(r.d, i);
         q.o[i] = vec3_axis(r.o, i);
         q.inv_d[i] = fabs(1 / d) <= REAL_MAX ? 1 / d : copysign(REAL_MAX, d);
         q.enters_hi[i] = q.inv_d[i] < 0;
     }
-    test_slots(&q, 0, (uint32_t)bvh->n_aside);
+    test_slots(&q, 0, (uint32_t)w->bvh.n_aside);
     real t_root;
-    q.visits = bvh->n_nodes > 0 && !(any && q.found);
-    if (q.visits > 0 && ray_box_entry(&q, 0, &t_root)) {
+    q.visits = w->bvh.n_nodes > 0 && !(any && q.found);
+    if (q.visits > 0 && meets_box(&q, 0, &t_root)) {
         visit(&q, 0);
     }
     st->node_visits += q.visits;

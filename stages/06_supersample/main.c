@@ -92,25 +92,6 @@ choose_spp(struct renderer *renderer, const struct options *opt, struct diag *er
     return true;
 }
 
-/* Build the BVH (unless --no-bvh) and report its shape. */
-static bool
-build_acceleration(struct renderer *renderer, bool use_bvh, struct report *rep, struct diag *err)
-{
-    if (!use_bvh) {
-        return true;
-    }
-    double start = clock_seconds();
-    struct bvh *bvh = &renderer->world.bvh;
-    if (!bvh_build(bvh, &renderer->world, err)) {
-        return false;
-    }
-    rep->seconds_build = clock_seconds() - start;
-    report_set(rep, "bvh_nodes", bvh->n_nodes, true);
-    report_set(rep, "bvh_aside", bvh->n_aside, true);
-    report_set(rep, "bvh_depth", bvh->depth, true);
-    return true;
-}
-
 /* What the render passes (--aov, aov.h) ask of the stage: the ray through
  * a point of the film, and the first surface along a ray. */
 static ray
@@ -169,9 +150,13 @@ main(int argc, char **argv)
     }
     renderer.scene = &run.scene;
     renderer.world = world_make(&run.scene);
-    if (!build_acceleration(&renderer, use_bvh, &run.rep, &err)) {
+    double start = clock_seconds(); /* the tree, unless --no-bvh; its size in --stats */
+    if (use_bvh && !bvh_build(&renderer.world.bvh, &renderer.world, &err)) {
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
+    run.rep.seconds_build = use_bvh ? clock_seconds() - start : 0;
+    report_set(&run.rep, "bvh_nodes", renderer.world.bvh.n_nodes, true);
+    report_set(&run.rep, "bvh_aside", renderer.world.bvh.n_aside, true);
     int status = render(&renderer, &run);
     bvh_free(&renderer.world.bvh);
     run_free(&run);

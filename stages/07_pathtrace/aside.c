@@ -1,14 +1,13 @@
 /*
- * aside.c - the primitives set aside: a wall of a room, placed by its
- * centroid in a leaf beside a few triangles of the statue in it, would make
- * that leaf's box and its ancestors' span the room.  A ray meets a box with
- * a chance estimated by its surface area over the scene box's (MacDonald
- * and Booth 1990), a light at least 1 / (number of lights): shadow rays aim
- * at one.  docs/stages/05_bvh.md has the measurements.
+ * aside.c - the primitives set aside: a wall, put in a leaf beside a few triangles of the statue in
+ * the room, would stretch that leaf's box and its ancestors' over the room.  A ray meets a box with
+ * a chance of its area over the scene box's (MacDonald and Booth 1990), a light 1 / lights or more.
  */
 #include "bvh.h"
 
 #include "geometry.h"
+
+#define BVH_ASIDE_DIVISOR 16 /* set aside: a chance of meeting a ray of 1/16 or more */
 
 static real
 box_area(struct box b)
@@ -27,17 +26,12 @@ chance_of_meeting(const struct world *w, int prim, real scene_area)
     return light && aimed_at > chance ? aimed_at : chance;
 }
 
-/* The BVH_MAX_ASIDE likeliest of those with a chance of at least
- * 1/BVH_ASIDE_DIVISOR (ties to the lower number).  The k-th chosen,
- * primitive p >= k, is swapped with refs[k], which no later swap moves.  A
- * scene box of zero or infinite area sets none aside. */
+/* The BVH_MAX_ASIDE likeliest (ties to the lower number), likeliest first.
+ * A scene box of zero or infinite area sets none aside. */
 int
 set_aside(const struct world *w, struct build_ref *refs, struct box scene)
 {
-    struct {
-        real chance;
-        int prim;
-    } top[BVH_MAX_ASIDE + 1]; /* the likeliest so far, most likely first */
+    int top[BVH_MAX_ASIDE + 1]; /* the likeliest so far, most likely first */
     real area = box_area(scene);
     int n = 0;
     for (int p = 0; area > 0 && area <= REAL_MAX && p < w->n_prims; p++) {
@@ -46,23 +40,20 @@ set_aside(const struct world *w, struct build_ref *refs, struct box scene)
             continue;
         }
         int at = n;
-        for (; at > 0 && top[at - 1].chance < chance; at--) {
+        for (; at > 0 && chance_of_meeting(w, top[at - 1], area) < chance; at--) {
             top[at] = top[at - 1];
         }
-        top[at].chance = chance;
-        top[at].prim = p;
+        top[at] = p;
         n += n < BVH_MAX_ASIDE;
     }
-    for (int p = 0, k = 0; k < n; p++) {
-        bool chosen = false;
-        for (int i = 0; i < n; i++) {
-            chosen = chosen || top[i].prim == p;
+    for (int k = 0; k < n; k++) { /* refs[0, k) hold top[0, k): top[k] is further on */
+        int at = k;
+        while (refs[at].prim != top[k]) {
+            at++;
         }
-        if (chosen) {
-            struct build_ref ref = refs[p];
-            refs[p] = refs[k];
-            refs[k++] = ref;
-        }
+        struct build_ref ref = refs[at];
+        refs[at] = refs[k];
+        refs[k] = ref;
     }
     return n;
 }

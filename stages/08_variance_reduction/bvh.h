@@ -1,14 +1,9 @@
 /*
- * bvh.h - a bounding volume hierarchy (bvh.c): a ray tests about log2(n)
- * boxes instead of n primitives, and gets world_intersect's answer bit for
- * bit.  Nodes are in depth-first order: an interior node's first child is
- * the next node, its second nodes[index]; a leaf holds prims[index ..
- * index + count).
+ * bvh.h - the bounding volume hierarchy (bvh.c): world_intersect's answer from ~log2(n) boxes.
  */
 #ifndef BVH_H
 #define BVH_H
 
-#include <assert.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -19,29 +14,20 @@
 #ifndef BVH_MAX_LEAF
 #define BVH_MAX_LEAF 2 /* most primitives in a leaf (tests/bench measures others) */
 #endif
-#define BVH_MAX_DEPTH 33 /* levels: a median split of n makes about log2(n) */
-
-/* Set aside (aside.c): the BVH_MAX_ASIDE likeliest of the primitives that a
- * ray meets with an estimated chance of at least 1/BVH_ASIDE_DIVISOR. */
-#ifndef BVH_ASIDE_DIVISOR
-#define BVH_ASIDE_DIVISOR 16
-#endif
 #ifndef BVH_MAX_ASIDE
-#define BVH_MAX_ASIDE 8
+#define BVH_MAX_ASIDE 8 /* most primitives set aside (aside.c) */
 #endif
 
 struct world; /* geometry.h */
 struct hit;
 
+/* 32 bytes, two to a cache line, in depth-first order: an interior node's first child is next. */
 struct bvh_node {
     float lo[3], hi[3]; /* bounds, rounded outward: they contain the primitives exactly */
     uint32_t index; /* interior: the second child; leaf: the first slot of prims */
     uint16_t count; /* primitives in a leaf; 0 for an interior node */
     uint8_t axis; /* interior: the split axis (0 x, 1 y, 2 z) */
-    uint8_t flags; /* unused, 0 */
 };
-
-static_assert(sizeof(struct bvh_node) == 32, "two nodes per 64-byte cache line");
 
 struct bvh {
     struct bvh_node *nodes; /* nodes[0] is the root */
@@ -49,7 +35,6 @@ struct bvh {
     int *prims; /* primitive numbers: those set aside, then the tree's in leaf order */
     int n_prims; /* 0: no BVH, world_intersect tests every primitive */
     int n_aside; /* prims[0, n_aside): tested by every ray, before the tree */
-    int depth; /* levels, 0 without a tree */
 };
 
 bool bvh_build(struct bvh *bvh, const struct world *w, struct diag *err);
@@ -57,10 +42,8 @@ bool bvh_build(struct bvh *bvh, const struct world *w, struct diag *err);
 void bvh_free(struct bvh *bvh);
 
 /* The closest hit along r with t in (0, t_max), or (any) whether there is
- * one: t, u, v and prim, as intersect_prim fills them.  Counts the boxes
- * tested in st->node_visits. */
+ * one: t, u, v and prim, as intersect_prim fills them. */
 bool bvh_intersect(
-    const struct bvh *bvh,
     const struct world *w,
     ray r,
     real t_max,
@@ -78,8 +61,7 @@ struct build_ref { /* what the build sorts */
 
 struct box prim_bounds(const struct world *w, int prim);
 
-/* aside.c: move the primitives set aside to refs[0, n) (refs in numbering
- * order, inside the box `scene`) and return n. */
+/* aside.c: move the primitives set aside to refs[0, n) and return n. */
 int set_aside(const struct world *w, struct build_ref *refs, struct box scene);
 
 #endif /* BVH_H */

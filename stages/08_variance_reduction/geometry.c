@@ -294,7 +294,7 @@ bool
 world_intersect(const struct world *w, ray r, real t_max, struct hit *out, struct stats *st)
 {
     if (w->bvh.n_prims > 0) {
-        bool hit = bvh_intersect(&w->bvh, w, r, t_max, false, out, st);
+        bool hit = bvh_intersect(w, r, t_max, false, out, st);
         if (hit) {
             hit_finish(w->scene, r, out);
         }
@@ -320,7 +320,7 @@ world_occluded(const struct world *w, ray r, real t_max, struct stats *st)
     /* LAB 02: any-hit query */
     struct hit h;
     if (w->bvh.n_prims > 0) {
-        return bvh_intersect(&w->bvh, w, r, t_max, true, &h, st);
+        return bvh_intersect(w, r, t_max, true, &h, st);
     }
     for (int prim = 0; prim < w->n_prims; prim++) {
         if (intersect_prim(w->scene, prim, r, t_max, &h)) {

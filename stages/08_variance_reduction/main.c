@@ -162,25 +162,6 @@ choose_spp(struct renderer *renderer, const struct options *opt, struct diag *er
     return true;
 }
 
-/* Build the BVH (unless --no-bvh) and report its shape. */
-static bool
-build_acceleration(struct renderer *renderer, bool use_bvh, struct report *rep, struct diag *err)
-{
-    if (!use_bvh) {
-        return true;
-    }
-    double start = clock_seconds();
-    struct bvh *bvh = &renderer->world.bvh;
-    if (!bvh_build(bvh, &renderer->world, err)) {
-        return false;
-    }
-    rep->seconds_build = clock_seconds() - start;
-    report_set(rep, "bvh_nodes", bvh->n_nodes, true);
-    report_set(rep, "bvh_aside", bvh->n_aside, true);
-    report_set(rep, "bvh_depth", bvh->depth, true);
-    return true;
-}
-
 /* Samples per pixel in one pass: the largest divisor of spp up to 16, so
  * a pass is short (a Ctrl-C loses little) yet stratified. */
 static int
@@ -275,10 +256,14 @@ main(int argc, char **argv)
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
     renderer.shadow.pick_cdf = pick_cdf;
-    if (!build_acceleration(&renderer, use_bvh, &run.rep, &err)) {
+    double start = clock_seconds(); /* the tree, unless --no-bvh; its size in --stats */
+    if (use_bvh && !bvh_build(&renderer.world.bvh, &renderer.world, &err)) {
         free(pick_cdf);
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
+    run.rep.seconds_build = use_bvh ? clock_seconds() - start : 0;
+    report_set(&run.rep, "bvh_nodes", renderer.world.bvh.n_nodes, true);
+    report_set(&run.rep, "bvh_aside", renderer.world.bvh.n_aside, true);
     int status = render(&renderer, &run);
     free(pick_cdf);
     bvh_free(&renderer.world.bvh);

@@ -136,9 +136,9 @@ bench_build(struct bench_model *m, struct diag *err)
 {
     m->seconds_build = 0;
     for (int run = 0; run < BENCH_RUNS; run++) {
-        bvh_free(&m->bvh);
+        bvh_free(&m->world.bvh);
         double start = clock_seconds();
-        if (!bvh_build(&m->bvh, &m->world, err)) {
+        if (!bvh_build(&m->world.bvh, &m->world, err)) {
             return false;
         }
         double seconds = clock_seconds() - start;
@@ -152,7 +152,7 @@ bench_build(struct bench_model *m, struct diag *err)
 void
 bench_model_free(struct bench_model *m)
 {
-    bvh_free(&m->bvh);
+    bvh_free(&m->world.bvh);
     scene_free(&m->scene);
 }
 
@@ -224,7 +224,7 @@ bench_shadow_rays(
     for (size_t i = 0; i < camera->n; i++) {
         struct hit h;
         ray r = camera->rays[i];
-        if (bvh_intersect(&m->bvh, &m->world, r, camera->t_max[i], false, &h, &st)
+        if (bvh_intersect(&m->world, r, camera->t_max[i], false, &h, &st)
             && shadow_ray(m, r, &h, &out->rays[out->n], &out->t_max[out->n])) {
             out->n++;
         }
@@ -332,7 +332,7 @@ bench_bvh_closest(const void *ctx, ray r, real t_max, struct stats *st)
 {
     const struct bench_model *m = ctx;
     struct hit h;
-    return bvh_intersect(&m->bvh, &m->world, r, t_max, false, &h, st);
+    return bvh_intersect(&m->world, r, t_max, false, &h, st);
 }
 
 bool
@@ -340,7 +340,7 @@ bench_bvh_any(const void *ctx, ray r, real t_max, struct stats *st)
 {
     const struct bench_model *m = ctx;
     struct hit h;
-    return bvh_intersect(&m->bvh, &m->world, r, t_max, true, &h, st);
+    return bvh_intersect(&m->world, r, t_max, true, &h, st);
 }
 
 bool

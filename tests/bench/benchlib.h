@@ -28,8 +28,7 @@
 struct bench_model {
     char name[64];
     struct scene scene;
-    struct world world; /* the numbering, for the BVH and brute force; its own BVH unused */
-    struct bvh bvh; /* built by bench_build */
+    struct world world; /* the numbering, and the BVH built by bench_build */
     struct camera camera; /* frames the model in a BENCH_WIDTH x BENCH_HEIGHT image */
     vec3 light; /* the point light shadow rays go to */
     real offset; /* how far shadow rays start off the surface */

@@ -21,6 +21,19 @@
 #define SPHERE_BANDS 500 /* the stand-in: 4 * 500^2 = 1M triangles */
 #define BRUTE_STRIDE 1024 /* brute force traces every 1024th camera ray */
 
+/* Levels of the subtree at node id (nodes in depth-first order, bvh.h). */
+static int
+tree_depth(const struct bvh *bvh, uint32_t id)
+{
+    const struct bvh_node *node = &bvh->nodes[id];
+    if (node->count > 0) {
+        return 1;
+    }
+    int first = tree_depth(bvh, id + 1);
+    int second = tree_depth(bvh, node->index);
+    return 1 + (first > second ? first : second);
+}
+
 static void
 print_model(const struct bench_model *m)
 {
@@ -31,10 +44,10 @@ print_model(const struct bench_model *m)
         m->scene.n_triangles,
         m->seconds_load,
         m->seconds_build,
-        m->bvh.n_nodes,
-        m->bvh.depth,
-        (double)((size_t)m->bvh.n_nodes * sizeof *m->bvh.nodes
-                 + (size_t)m->bvh.n_prims * sizeof *m->bvh.prims)
+        m->world.bvh.n_nodes,
+        m->world.bvh.n_nodes > 0 ? tree_depth(&m->world.bvh, 0) : 0,
+        (double)((size_t)m->world.bvh.n_nodes * sizeof *m->world.bvh.nodes
+                 + (size_t)m->world.bvh.n_prims * sizeof *m->world.bvh.prims)
             / (1 << 20));
     printf(
         "  %-8s %8s %8s %12s %12s %10s %10s\n",
