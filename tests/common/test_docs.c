@@ -67,8 +67,11 @@ looks_like_file(const char *s)
 static bool
 exists_in(const char *dir, const char *name)
 {
-    char path[2 * MAX_NAME];
-    snprintf(path, sizeof path, "%s%s%s", dir, dir[0] ? "/" : "", name);
+    char path[2 * MAX_NAME + 2];
+    int w = snprintf(path, sizeof path, "%s%s%s", dir, dir[0] ? "/" : "", name);
+    if (w < 0 || (size_t)w >= sizeof path) {
+        return false; /* longer than any name the docs can hold */
+    }
     size_t n = strlen(path);
     if (n > 1 && path[n - 1] == '/') {
         path[n - 1] = '\0';

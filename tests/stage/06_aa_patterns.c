@@ -143,7 +143,7 @@ edge_error_slope(const char *pattern, double *mse_last)
  * edge pixels their error falls faster than independent samples'. */
 TEST(jitter_errors_fall_faster_than_independent_samples)
 {
-    double mse_jitter;
+    double mse_jitter = NAN; /* set unless the renders failed */
     double slope_jitter = edge_error_slope("jitter", &mse_jitter);
     printf(
         "log-log slope of the edge pixels' MSE: jitter %.3f (independent samples: -1; "
