@@ -608,6 +608,30 @@ EOF
     fi
 }
 
+# check-limits.sh on the mini project (its diffs written by test_diffs), then
+# on a doctored table and on files grown past the limits.
+test_limits() {
+    check check-limits/within "$LAB_DIR/check-limits.sh" --root "$M"
+    sed -E 's/^(\| \[02_b\].*\|) [0-9]+ \| [0-9]+ \| [0-9]+ \|$/\1 440 | 11 | 251 |/' \
+        "$M/docs/README.md" >"$T/limits.md"
+    expect_exit check-limits/diff-over 1 'FAIL limits/diff 02_b: 451 changed lines' \
+        "$LAB_DIR/check-limits.sh" --root "$M" --table "$T/limits.md"
+    expect_exit check-limits/lab-over 1 'FAIL limits/lab 02_b: 251 lines in LAB regions' \
+        "$LAB_DIR/check-limits.sh" --root "$M" --table "$T/limits.md"
+    sed -E 's/^(\| \[02_b\].*\|) [0-9]+ \| [0-9]+ \| [0-9]+ \|$/\1 440 | 10 | 250 |/' \
+        "$M/docs/README.md" >"$T/limits.md"
+    check check-limits/at-the-limits "$LAB_DIR/check-limits.sh" --root "$M" --table "$T/limits.md"
+    awk 'BEGIN { for (i = 0; i < 501; i++) print "/* line */" }' >"$M/stages/02_b/long.h"
+    expect_exit check-limits/source-over 1 'FAIL limits/source: stages/02_b/long.h has 501 lines' \
+        "$LAB_DIR/check-limits.sh" --root "$M"
+    mv "$M/stages/02_b/long.h" "$M/docs/stages/03_c.md"
+    expect_exit check-limits/lesson-over 1 'FAIL limits/lesson: docs/stages/03_c.md has 501 lines' \
+        "$LAB_DIR/check-limits.sh" --root "$M"
+    rm "$M/docs/stages/03_c.md"
+    expect_exit check-limits/no-table 1 'no diff table' \
+        "$LAB_DIR/check-limits.sh" --root "$M" --table /dev/null
+}
+
 test_help() {
     # make help has a line for every target of the top-level Makefile.
     hp_root=$(cd "$LAB_DIR/../.." && pwd)
@@ -625,7 +649,7 @@ test_help() {
     else
         fail help/make-help "no line for:$hp_missing" "$(cat "$T/make-help")"
     fi
-    for hp_s in make-lab grade grade-pages make-diffs check-diffs check-labs make-branches test-lab-tools; do
+    for hp_s in make-lab grade grade-pages make-diffs check-diffs check-labs check-limits make-branches test-lab-tools; do
         if "$LAB_DIR/$hp_s.sh" --help 2>&1 | head -n 1 | grep -q "^$hp_s.sh - "; then
             ok "help/$hp_s"
         else
@@ -769,6 +793,7 @@ test_reading_time
 test_make_lab
 if command -v git >/dev/null 2>&1; then
     test_diffs
+    test_limits
     test_branches
 fi
 test_options
