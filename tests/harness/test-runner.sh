@@ -97,7 +97,7 @@ EOF
 # the make that runs these tests (make exports its command-line variables,
 # REAL=float among them, to the recipes' environment).
 CLEAN_ENV="-u MAKEFLAGS -u MAKELEVEL -u MFLAGS -u STAGE -u OUT -u LAB -u REAL -u SANITIZE
-    -u WERROR -u CFLAGS -u CPPFLAGS -u LDFLAGS -u LDLIBS"
+    -u WERROR -u CFLAGS -u CPPFLAGS -u LDFLAGS -u LDLIBS -u SKIP_PARTS"
 
 # mk ARGS... - make in the copy, with a clean command line; output in
 # $T/out, status in st.
@@ -341,6 +341,15 @@ if [ "$st" -ne 0 ] && grep -q '^FAIL quiet: exit 0, no result line' "$T/out" &&
     ok parts
 else
     fail parts "exit $st" "$(said)"
+fi
+# A part SKIP_PARTS names is skipped, counted and named.
+mk test SKIP_PARTS="quiet plainly"
+if grep -q '^skip plainly: SKIP_PARTS names it' "$T/out" && grep -q '^skip quiet: SKIP_PARTS names it' "$T/out" &&
+    [ "$(row plainly)" = "plainly                  0 passed, 0 failed, 1 skipped" ] &&
+    grep -q '^FAIL lying' "$T/out" && ! grep -q '^FAIL quiet' "$T/out"; then
+    ok skip-parts
+else
+    fail skip-parts "exit $st" "$(said)"
 fi
 # A part of the plain build only is skipped, counted and named, in a variant.
 mk REAL=float test
