@@ -21,7 +21,8 @@
 #                   make grade-class SUBMISSIONS=dir a whole class (CSV, HTML;
 #                   SCHEDULER=slurm); make farm-render a render over Slurm tasks
 #   make diffs      docs/diffs/*.diff and the diff table; make branches OUT=dir
-#   make check-labs every check of every handout (make test runs the quick ones)
+#   make check-labs every check of every handout (make test runs the quick ones;
+#                   CHECK_LABS_FLAGS=--no-earlier: all but the earlier stages' tests)
 #   make clean
 #   make help       one line per target
 # Knobs: REAL=float (single precision, build/float/), CFLAGS=..., WERROR=1,
@@ -174,7 +175,7 @@ branches:
 	@tests/lab/make-branches.sh $(if $(filter 1,$(FORCE)),--force) "$(OUT)"
 
 check-labs: all
-	@tests/lab/check-labs.sh --full
+	@tests/lab/check-labs.sh --full $(CHECK_LABS_FLAGS)
 
 # The reference scenes' feature masks, by which make grade breaks the error
 # down (tests/reference/NAME.feature.pfm, docs/aov.md).
