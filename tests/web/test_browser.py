@@ -16,7 +16,11 @@ NUL-terminated line).  Checks, against the native build of the same stage:
   - a malformed scene: the page shows the stage's located error, the same
     FILE:LINE:COL: error: line as the native build prints;
   - the pixel inspector opens on a click's pixel and shows the path picture,
-    the same SVG as the native --pixel X,Y --trace-svg.
+    the same SVG as the native --pixel X,Y --trace-svg;
+  - every scene of the library renders in every stage (EVERY_SIZE pixels
+    wide, 1 spp: what is checked is that it loads and renders, with finite
+    pixels), and every scene of scenes/ is either in the library or left out
+    with its reason (library.json's left_out: the Buddha).
 
 Prints one line per check and "N passed, N failed, N skipped" last; skips
 (with the reason) when there is no Chromium or no build/web/.
@@ -49,6 +53,9 @@ STAGES = ['01_raycast', '07_pathtrace']
 # browser build), whose results may differ in the last bit; measured: see
 # docs/web.md.
 TOLERANCE = 1e-4
+# Width of the every-scene renders: small, since stages 01-04 test every
+# triangle of the bunnies for every ray.
+EVERY_SIZE = 12
 
 passed = failed = skipped = 0
 
@@ -286,6 +293,36 @@ def check_inspector(browser, tmp):
            % (len(shown.get('svg', '')), len(want)))
 
 
+def check_every_scene(browser, tmp):
+    with open(os.path.join(WEB, 'library.json')) as f:
+        library = json.load(f)
+    bundled = [s['name'] for s in library['scenes']]
+    left_out = {s['name']: s['why'] for s in library['left_out']}
+    ours = sorted(os.path.splitext(n)[0] for n in os.listdir(os.path.join(ROOT, 'scenes'))
+                  if n.endswith('.scene') or n.endswith('.gltf'))
+    unaccounted = [n for n in ours if n not in bundled and not left_out.get(n)]
+    result(not unaccounted and bool(bundled),
+           'every scene of scenes/ is in the page\'s library or left out with its reason',
+           '%d bundled, left out: %s; neither: %s' % (len(bundled), ', '.join(sorted(left_out)) or 'none',
+                                                    ', '.join(unaccounted) or 'none'))
+    failures = []
+    for stage in library['stages']:
+        for name in bundled:
+            a = browser.evaluate('stagelight.render(%s)' % json.dumps({
+                'scene': name, 'stage': stage, 'width': EVERY_SIZE, 'height': '', 'spp': 1,
+                'seed': 1, 'workers': 2}))[0]
+            if a['status'] != 0:
+                failures.append('%s %s: status %s: %s' % (stage, name, a['status'],
+                                                         (a['errorsShown'] or ' '.join(a['log']))[:200]))
+                continue
+            w, h, pixels = read_pfm(base64.b64decode(browser.evaluate('stagelight.pfm(0)')))
+            bad = sum(1 for v in pixels if v != v or v in (float('inf'), float('-inf')))
+            if w != EVERY_SIZE or h < 1 or len(pixels) != 3 * w * h or bad:
+                failures.append('%s %s: %dx%d, %d pixel values not finite' % (stage, name, w, h, bad))
+    result(not failures, 'every scene of the library renders in every stage (%d scenes x %d stages)'
+           % (len(bundled), len(library['stages'])), '; '.join(failures[:5]))
+
+
 def main():
     chromium = os.environ.get('CHROMIUM') or shutil.which('chromium')
     if not chromium:
@@ -313,7 +350,7 @@ def main():
             browser.evaluate('stagelight.inspect(1, 180, 200)')
             browser.screenshot(sys.argv[2], 1200, 1800)
             return
-        for check in (check_images, check_error, check_inspector):
+        for check in (check_images, check_error, check_inspector, check_every_scene):
             try:
                 check(browser, tmp)
             except (RuntimeError, TimeoutError, EOFError, OSError, ValueError) as e:
