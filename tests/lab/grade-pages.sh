@@ -1,7 +1,7 @@
 #!/bin/sh
 # grade-pages.sh - a compare report page for each reference render of a lab.
 #
-#   grade-pages.sh [--help] HANDOUT STAGE OUT
+#   grade-pages.sh [--help] [--spp N] HANDOUT STAGE OUT
 #
 # HANDOUT is a built lab handout (grade.sh's copy), STAGE its stage
 # (05_bvh).  For every Mitsuba reference the stage's tests compare with
@@ -9,7 +9,9 @@
 # reference's size, runs build/tools/compare with --html, and writes
 # OUT/NAME.html (the render, the reference, the error map, the numbers and
 # the verdict; how to read it: the handout's LAB.md, "Reading the report
-# pages").  Prints one line per page: its verdict and path.
+# pages").  Prints one line per page: its verdict and path.  --spp N: the
+# samples per pixel of each render of the noise-tested pages (default
+# lablib.sh's GRADE_DEFAULT_SPP; make grade LAB=dir SPP=N).
 #
 # What is compared, as the stage's own tests do it:
 #   stages 02-05  cornell_diffuse_point_direct: one render, the reference's
@@ -17,9 +19,9 @@
 #                 edges differ by design), relMSE limit 1e-5
 #   stages 03-05  cornell_diffuse_area_direct: one render with 64 shadow
 #                 samples, smooth pixels, relMSE limit 5e-5
-#   stage 06      cornell_diffuse_point_direct: two renders of 64 spp with
+#   stage 06      cornell_diffuse_point_direct: two renders of --spp samples with
 #                 different seeds, block tests (noise or bias)
-#   stages 07-08  the three *_gi references: two renders of 64 spp each,
+#   stages 07-08  the three *_gi references: two renders of --spp samples each,
 #                 block tests
 # The pages with block tests share the family level 0.01 (lablib.sh's
 # page_alpha): one run of make grade on correct work says "biased" on any
@@ -38,7 +40,10 @@ PROG=grade-pages.sh
 LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 . "$LAB_DIR/lablib.sh"
 
-case ${1:-} in -h | --help) show_help "$0"; exit 0 ;; esac
+spp=$GRADE_DEFAULT_SPP
+parse_options '--spp spp=VALUE' "$@"
+shift "$po_used"
+case $spp in '' | 0* | *[!0-9]*) usage_error "--spp needs a positive number, got '$spp'" ;; esac
 [ $# -eq 3 ] || usage_error "expected HANDOUT STAGE OUT, got $# argument(s)"
 dir=$(abs_dir "$1")
 stage=$2
@@ -114,7 +119,7 @@ page() {
 # noise_pages N: the family level of each of the lab's N block-tested pages.
 noise_pages() {
     alpha=$(page_alpha "$1")
-    echo "    (each page below at alpha $alpha, so that correct work is called biased on any of"
+    echo "    (each page below: two renders of $spp spp, tested at alpha $alpha, so that correct work is called biased on any of"
     echo "    its $1 page(s) in at most 1 grade in 100: docs/calibration/README.md)"
 }
 
@@ -130,12 +135,12 @@ case $nn in
         ;;
     06)
         noise_pages 1
-        page cornell_diffuse_point_direct cornell_diffuse_point 2 "--spp 64" --alpha "$alpha"
+        page cornell_diffuse_point_direct cornell_diffuse_point 2 "--spp $spp" --alpha "$alpha"
         ;;
     07 | 08)
         noise_pages 3
         for scene in cornell_diffuse_point cornell_diffuse_area cornell_specular_area; do
-            page "${scene}_gi" "$scene" 2 "--spp 64" --alpha "$alpha"
+            page "${scene}_gi" "$scene" 2 "--spp $spp" --alpha "$alpha"
         done
         ;;
 esac

@@ -35,6 +35,8 @@
 #   --pages DIR    where the report pages go (default LAB/grade): one
 #                  compare page per reference render (grade-pages.sh)
 #   --no-pages     write no report pages
+#   --spp N        samples per pixel of the pages' renders (grade-pages.sh;
+#                  default lablib.sh's GRADE_DEFAULT_SPP)
 #   --keep DIR     keep what the grading read in DIR: its records, the
 #                  test programs' logs (NAME.log), the build's (build.log),
 #                  and how each TEST() counted (tests: grade.awk's tests=)
@@ -59,16 +61,18 @@ pristine=0
 lab_only=0
 pages=
 no_pages=0
+spp=$GRADE_DEFAULT_SPP
 controls=
 save_controls=
 keep=
 limit=300
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
-parse_options '--pristine pristine=1 --lab-only lab_only=1 --no-pages no_pages=1 --pages pages=VALUE --controls controls=VALUE
+parse_options '--pristine pristine=1 --lab-only lab_only=1 --no-pages no_pages=1 --pages pages=VALUE --spp spp=VALUE --controls controls=VALUE
     --save-controls save_controls=VALUE --keep keep=VALUE --timeout limit=VALUE --jobs jobs=VALUE --root root=DIR' "$@"
 shift "$po_used"
 [ $# -eq 1 ] || usage_error "expected one handout directory, got $# argument(s)"
 case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
+case $spp in '' | 0* | *[!0-9]*) usage_error "--spp needs a positive number, got '$spp'" ;; esac
 case $jobs in '' | *[!0-9]*) usage_error "--jobs needs a number, got '$jobs'" ;; esac
 [ -d "$1" ] || die "no such directory: $1"
 [ -z "$controls" ] || [ -f "$controls" ] || die "no such file: $controls"
@@ -164,7 +168,7 @@ done
 
 if [ "$build" != failed ] && [ "$no_pages" -eq 0 ]; then
     echo "report pages (how to read them: LAB.md, \"Reading the report pages\"):"
-    "$LAB_DIR/grade-pages.sh" "$dir" "$stage" "${pages:-$lab/grade}" || echo "note: some pages could not be written"
+    "$LAB_DIR/grade-pages.sh" --spp "$spp" "$dir" "$stage" "${pages:-$lab/grade}" || echo "note: some pages could not be written"
 fi
 
 if [ -n "$keep" ]; then

@@ -318,6 +318,11 @@ handout_differences() {
     done
 }
 
+# Samples per pixel of each of the two renders of a noise-tested report
+# page of make grade (grade-pages.sh --spp, make grade SPP=N): what the
+# pages' power to find a bias rests on (docs/calibration/README.md).
+GRADE_DEFAULT_SPP=64
+
 # page_alpha N - the family level of one of N noise-tested report pages of
 # make grade (grade-pages.sh): Sidak's 1 - (1 - 0.01)^(1/N), so that one
 # run of make grade on correct work says "biased" on any page with

@@ -543,15 +543,18 @@ test_branches() {
 
 # grade-pages.sh on the project's own build (make test builds it first):
 # a page per reference render of labs 03 (one render, relMSE limit) and 06
-# (two renders, block tests), each one file with its images embedded.
+# (two renders, block tests, of the samples --spp asks for, as its header
+# line says), each one file with its images embedded.
 test_grade_pages() {
     root=$(cd "$LAB_DIR/../.." && pwd)
+    expect_exit grade-pages/spp-must-be-positive 2 "spp needs a positive number, got '0'" \
+        "$LAB_DIR/grade-pages.sh" --spp 0 "$root" 06_supersample "$T/pages/none"
     for gp_stage in 03_soft_shadows 06_supersample; do
         if [ ! -x "$root/build/$gp_stage/render" ]; then
             fail "grade-pages/$gp_stage" "no $root/build/$gp_stage/render: run make first"
             continue
         fi
-        if ! "$LAB_DIR/grade-pages.sh" "$root" "$gp_stage" "$T/pages/$gp_stage" >"$T/out" 2>&1; then
+        if ! "$LAB_DIR/grade-pages.sh" --spp 16 "$root" "$gp_stage" "$T/pages/$gp_stage" >"$T/out" 2>&1; then
             fail "grade-pages/$gp_stage" "$(cat "$T/out")"
             continue
         fi
@@ -568,6 +571,7 @@ test_grade_pages() {
         if [ "$gp_pages" -eq "$gp_want" ] && [ "$gp_images" -eq $((5 * gp_want)) ] &&
             [ "$(grep -c "$gp_verdict" "$T/out")" -eq "$gp_want" ] &&
             grep -q "feature pass tests/reference/" "$T/out" &&
+            { [ "$gp_stage" != 06_supersample ] || grep -q "two renders of 16 spp" "$T/out"; } &&
             ! grep -q -e "$root/tests/reference" -e "grade-pages\." "$T/out"; then
             ok "grade-pages/$gp_stage"
         else
