@@ -38,10 +38,12 @@ trap 'exit 1' HUP INT TERM
 for prog in $programs; do
     # The last stage the program applies to (its tests of that stage).
     from=$(test_from "$prog.c")
-    upto=${prog%%_*}
-    upto=${upto#*-}
+    # NN_name applies from stage NN on; NN-MM_name to stages NN..MM only.
+    range=${prog%%_*}
+    upto=99
+    case $range in *-*) upto=${range#*-} ;; esac
     stage=$(stage_list "$root" | awk -v from="$from" -v upto="$upto" '
-        { nn = substr($0, 1, 2) } nn >= from && (upto == from || nn <= upto) { last = $0 } END { print last }')
+        { nn = substr($0, 1, 2) } nn >= from && nn <= upto { last = $0 } END { print last }')
     [ -n "$stage" ] || die "no stage for $prog"
     bin=$root/build/tests/$stage/$prog
     # The stage and this one program (make -C tests stage would run them all).
