@@ -305,6 +305,9 @@ def check_every_scene(browser, tmp):
            'every scene of scenes/ is in the page\'s library or left out with its reason',
            '%d bundled, left out: %s; neither: %s' % (len(bundled), ', '.join(sorted(left_out)) or 'none',
                                                     ', '.join(unaccounted) or 'none'))
+    stages = sorted(d for d in os.listdir(os.path.join(ROOT, 'stages')) if re.match(r'\d\d_', d))
+    result(library['stages'] == stages, 'the page offers every stage of stages/',
+           'page: %s; stages/: %s' % (' '.join(library['stages']), ' '.join(stages)))
     failures = []
     for stage in library['stages']:
         for name in bundled:
