@@ -43,7 +43,7 @@ LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 spp=$GRADE_DEFAULT_SPP
 parse_options '--spp spp=VALUE' "$@"
 shift "$po_used"
-case $spp in '' | 0* | *[!0-9]*) usage_error "--spp needs a positive number, got '$spp'" ;; esac
+check_spp "$spp"
 [ $# -eq 3 ] || usage_error "expected HANDOUT STAGE OUT, got $# argument(s)"
 dir=$(abs_dir "$1")
 stage=$2

@@ -72,7 +72,7 @@ parse_options '--pristine pristine=1 --lab-only lab_only=1 --no-pages no_pages=1
 shift "$po_used"
 [ $# -eq 1 ] || usage_error "expected one handout directory, got $# argument(s)"
 case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
-case $spp in '' | 0* | *[!0-9]*) usage_error "--spp needs a positive number, got '$spp'" ;; esac
+check_spp "$spp"
 case $jobs in '' | *[!0-9]*) usage_error "--jobs needs a number, got '$jobs'" ;; esac
 [ -d "$1" ] || die "no such directory: $1"
 [ -z "$controls" ] || [ -f "$controls" ] || die "no such file: $controls"

@@ -323,6 +323,11 @@ handout_differences() {
 # pages' power to find a bias rests on (docs/calibration/README.md).
 GRADE_DEFAULT_SPP=64
 
+# check_spp N - usage error unless N (a --spp value) is a positive number.
+check_spp() {
+    case $1 in '' | 0* | *[!0-9]*) usage_error "--spp needs a positive number, got '$1'" ;; esac
+}
+
 # page_alpha N - the family level of one of N noise-tested report pages of
 # make grade (grade-pages.sh): Sidak's 1 - (1 - 0.01)^(1/N), so that one
 # run of make grade on correct work says "biased" on any page with

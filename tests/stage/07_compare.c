@@ -226,9 +226,10 @@ most_precise_block(
         }
         /* More than BIAS where the block's few degrees of freedom would
          * leave BIAS under the level of one of compare's tests (Sidak over
-         * the blocks' three channels at its default 0.01), with a tenfold
-         * margin: the specular box's clearest block has 6 at some seeds. */
-        double level = 1 - pow(1 - 0.01, 1.0 / (3.0 * s->n_blocks));
+         * the blocks' three channels at compare's default alpha, which is
+         * PATHCHECK_ALPHA), with a tenfold margin: the specular box's
+         * clearest block has 4 to 7 degrees of freedom at some seeds. */
+        double level = stattest_sidak(PATHCHECK_ALPHA, 3.0 * s->n_blocks);
         *bias = BIAS;
         while (best >= 0 && *bias < 0.5
                && stattest_t_pvalue(*bias / BIAS * best_t, s->blocks[best].dof[1]) > level / 10) {

@@ -30,6 +30,7 @@ page: stages 03 and 07 side by side on cornell_diffuse_area, 64 spp.
 """
 import base64
 import json
+import math
 import os
 import re
 import shutil
@@ -319,7 +320,7 @@ def check_every_scene(browser, tmp):
                                                          (a['errorsShown'] or ' '.join(a['log']))[:200]))
                 continue
             w, h, pixels = read_pfm(base64.b64decode(browser.evaluate('stagelight.pfm(0)')))
-            bad = sum(1 for v in pixels if v != v or v in (float('inf'), float('-inf')))
+            bad = sum(1 for v in pixels if not math.isfinite(v))
             if w != EVERY_SIZE or h < 1 or len(pixels) != 3 * w * h or bad:
                 failures.append('%s %s: %dx%d, %d pixel values not finite' % (stage, name, w, h, bad))
     result(not failures, 'every scene of the library renders in every stage (%d scenes x %d stages)'
