@@ -9,12 +9,13 @@
 # code blocks, the words of the comments in stages/01_*/*.[ch], and the
 # lines of code (not blank, not only a comment); for each later stage NN:
 # the same counts over the lines the diff from the previous stage adds
-# (`diff -ruN`; what it removes is read too, as context, and counted as
-# code lines).  Minutes at two paces: prose at 238 words a minute (the mean
-# silent reading rate of non-fiction, Brysbaert 2019) with code at 10 lines
-# a minute (600 lines an hour, a first careful read), and a slower one,
-# prose at 200 and code at 5 lines a minute (300 an hour, the middle of the
-# 200-400 lines an hour that code review studies find effective).  Prints a
+# and over those it removes (`diff -ruN`; what it removes is read too, as
+# context: its code as code, its comments as prose).  Minutes at two
+# paces: prose at 238 words a minute (the mean silent reading rate of
+# non-fiction, Brysbaert 2019) with code at 10 lines a minute (600 lines an
+# hour, a first careful read), and a slower one, prose at 200 and code at
+# 5 lines a minute (300 an hour, the middle of the 200-400 lines an hour
+# that code review studies find effective).  Prints a
 # markdown table.  Exit status: 0, 2 usage.
 set -eu
 
@@ -70,10 +71,10 @@ for dir in "$root"/stages/[0-9][0-9]_*; do
         words=$(($2 + $([ -n "$page" ] && page_words "$page" || echo 0)))
         what="$name: lesson page and code"
     else
-        set -- $(diff -ruN "$prev" "$dir" | sed -n 's/^+\([^+]\)/\1/p; s/^+$//p' | c_counts)
-        removed=$(diff -ruN "$prev" "$dir" | grep -c '^-[^-]' || true)
-        code=$(($1 + removed))
-        words=$2
+        set -- $(diff -ruN "$prev" "$dir" | sed -n 's/^+\([^+]\)/\1/p; s/^+$//p' | c_counts) \
+            $(diff -ruN "$prev" "$dir" | sed -n 's/^-\([^-]\)/\1/p; s/^-$//p' | c_counts)
+        code=$(($1 + $3))
+        words=$(($2 + $4))
         what="${prev##*/} → $name: the diff"
     fi
     echo "| $what | $words | $code | $(minutes "$words" "$code" 238 10) | $(minutes "$words" "$code" 200 5) |"

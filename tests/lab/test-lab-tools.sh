@@ -318,7 +318,7 @@ mini_project() {
         "$M/tests/harness" "$M/tests/lib" "$M/tests/reference" "$M/scenes" "$M/docs/stages" "$M/docs/images"
     cp "$LAB_DIR/../harness/select-tests.sh" "$M/tests/harness/select-tests.sh"
     printf 'SRCS = main.c\n' >"$M/stages/01_a/Makefile"
-    printf 'int main(void) { return 0; }\n' >"$M/stages/01_a/main.c"
+    printf '/* the first\n * stage */\nint main(void) { return 0; }\n' >"$M/stages/01_a/main.c"
     printf 'SRCS = main.c\n' >"$M/stages/02_b/Makefile"
     cat >"$M/stages/02_b/main.c" <<'EOF'
 static int
@@ -363,11 +363,12 @@ EOF
 }
 
 # reading-time.sh counts the lesson's words, comment words (a comment
-# line's "*" not one) and code lines of stage 01, then of each diff.
+# line's "*" not one) and code lines of stage 01, then of each diff, the
+# lines it removes included (their comments as words, not code lines).
 test_reading_time() {
     check reading-time/runs "$LAB_DIR/reading-time.sh" --root "$M"
-    if grep -qF '| 01_a: lesson page and code | 8 | 1 |' "$T/out" &&
-        grep -qF '| 01_a → 02_b: the diff | 11 | 7 |' "$T/out"; then
+    if grep -qF '| 01_a: lesson page and code | 11 | 1 |' "$T/out" &&
+        grep -qF '| 01_a → 02_b: the diff | 14 | 7 |' "$T/out"; then
         ok reading-time/counts
     else
         fail reading-time/counts "$(cat "$T/out")"
@@ -493,8 +494,8 @@ test_diffs() {
     else
         fail make-diffs/diff "$(cat "$M/docs/diffs/02_b.diff" 2>&1)"
     fi
-    if grep -q '^| \[02_b\](stages/02_b.md) | 01_a | \[02_b.diff\](diffs/02_b.diff) | 1 | 10 | 1 | 4 |$' "$M/docs/README.md" &&
-        grep -q '^| \[01_a\](stages/01_a.md) | (none) | \[01_a.diff\](diffs/01_a.diff) | 2 (2 new) | 2 | 0 | 0 |$' "$M/docs/README.md"; then
+    if grep -q '^| \[02_b\](stages/02_b.md) | 01_a | \[02_b.diff\](diffs/02_b.diff) | 1 | 10 | 3 | 4 |$' "$M/docs/README.md" &&
+        grep -q '^| \[01_a\](stages/01_a.md) | (none) | \[01_a.diff\](diffs/01_a.diff) | 2 (2 new) | 4 | 0 | 0 |$' "$M/docs/README.md"; then
         ok make-diffs/table
     else
         fail make-diffs/table "$(cat "$M/docs/README.md")"
@@ -531,8 +532,9 @@ test_branches() {
         fail make-branches/tags "$(git -C "$B" log --oneline --decorate 2>&1)"
     fi
     git -C "$B" diff stage-01 stage-02 --numstat >"$T/numstat"
-    # 1 file: 10 lines of 02_b's main.c and the line test_diffs added, for 1
-    if [ "$(awk '{ a += $1; r += $2; n++ } END { print n, a, r }' "$T/numstat")" = "1 11 1" ]; then
+    # 1 file: 10 lines of 02_b's main.c and the line test_diffs added, for
+    # 01_a's 3
+    if [ "$(awk '{ a += $1; r += $2; n++ } END { print n, a, r }' "$T/numstat")" = "1 11 3" ]; then
         ok make-branches/diff
     else
         fail make-branches/diff "$(cat "$T/numstat")"
