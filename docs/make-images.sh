@@ -23,7 +23,8 @@ threads=${THREADS:-2}
 out=${IMAGES:-docs/images}
 tmp=$(mktemp -d)
 skipped=0
-trap 'rm -rf "$tmp"' EXIT INT TERM
+trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' HUP INT PIPE TERM
 mkdir -p "$out"
 
 # render STAGE NAME [OPTIONS...] SCENE: one image, docs/images/NAME.png.

@@ -28,7 +28,7 @@ out=scenes/gallery
 page=scenes/README.md
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/gallery.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 
 die() {
     echo "make-gallery.sh: $*" >&2

@@ -17,7 +17,8 @@ fi
 old=$1 new=$2 scene=$3 runs=$4
 shift 4
 dir=$(mktemp -d "${TMPDIR:-/tmp}/ab_render.XXXXXX")
-trap 'rm -rf "$dir"' EXIT INT TERM
+trap 'rm -rf "$dir"' EXIT
+trap 'exit 1' HUP INT PIPE TERM
 # Rays per processor-second from one --stats file.
 rate() {
     awk -F'[:,]' '{ for (i = 1; i < NF; i++) { k = $i; gsub(/[ "{}]/, "", k); v[k] = $(i + 1) } }

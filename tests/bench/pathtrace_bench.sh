@@ -56,6 +56,7 @@ scenes=${SCENES:-cornell_diffuse_area cornell_specular_area cornell_diffuse_poin
 work=$(mktemp -d "${TMPDIR:-/tmp}/pathtrace-bench.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 trap 'exit 130' INT TERM
+trap 'exit 1' HUP PIPE
 
 [ -x "$render" ] && [ -x "$imgcmp" ] || {
     echo "pathtrace_bench.sh: run make first" >&2

@@ -27,6 +27,7 @@ if ! command -v node >/dev/null 2>&1; then
 fi
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/sl-webbench.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' HUP INT PIPE TERM
 
 # best CMD... - the largest rays_per_second of ROUNDS runs of CMD (which
 # prints JSON with that field, on one line or many).

@@ -99,7 +99,7 @@ pool=$cal/pool-$key-$size-$spp
 mkdir -p "$pool" "$out"
 work=$(mktemp -d "${TMPDIR:-/tmp}/calibrate.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 csv=$work/calibration.csv
 # The run's own copies of the tools: a rebuild during a long run does not
 # mix two versions of the statistics into one table.

@@ -33,7 +33,7 @@ programs=$*
     programs=$(grep -l 'pathcheck_seed(' "$root"/tests/stage/*.c | xargs -n 1 basename | sed 's/\.c$//')
 work=$(mktemp -d "${TMPDIR:-/tmp}/seeds.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 
 for prog in $programs; do
     # The last stage the program applies to (its tests of that stage).

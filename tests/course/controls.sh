@@ -77,7 +77,7 @@ fi
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/controls.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 for s in $stages; do
     "$LAB_DIR/make-lab.sh" --quiet --root "$root" "$s" "$work/$s" || die "could not write the handout of $s"
     "$LAB_DIR/grade.sh" --no-pages --root "$root" --timeout "$limit" --save-controls "$work/$s.controls" \

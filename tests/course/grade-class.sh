@@ -101,7 +101,7 @@ grade_task() {
     rm -rf "$gt_dest" "$gt_top"
     mkdir -p "$gt_dest/results" "$gt_top"
     trap 'rm -rf "$gt_top"' EXIT
-    trap 'exit 1' HUP INT TERM
+    trap 'exit 1' HUP INT PIPE TERM
     ln -s "$out/autograder" "$gt_top/source"
     ln -s "$gt_dir" "$gt_top/submission"
     ln -s "$gt_dest/results" "$gt_top/results"

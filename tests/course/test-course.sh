@@ -40,7 +40,7 @@ CHECKS=course
 . "$COURSE_DIR/checklib.sh"
 T=$(mktemp -d "${TMPDIR:-/tmp}/test-course.XXXXXX") || exit 2
 trap 'rm -rf "$T"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 F=$COURSE_DIR/fixtures
 
 # json_check FILE PYTHON - run PYTHON (a check of the JSON in FILE, loaded

@@ -65,7 +65,7 @@ stop_daemons() {
     pids=
 }
 trap 'stop_daemons; rm -rf "$T"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 
 # ---- MUNGE and Slurm, for localhost ---------------------------------------------
 mkdir -p "$T/munge" "$T/state" "$T/spool" "$T/log" "$T/t"

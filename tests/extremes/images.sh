@@ -19,7 +19,8 @@ cd "$root"
 fixed=${1:-}
 out=docs/images/extremes
 tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT INT TERM
+trap 'rm -rf "$tmp"' EXIT
+trap 'exit 1' HUP INT PIPE TERM
 mkdir -p "$out"
 
 # The battery's scenes, written by its render program for stages 01 and 03.

@@ -26,6 +26,7 @@ doc=docs/extremes.md
 table() {
     results=$(mktemp)
     trap 'rm -f "$results"' EXIT
+    trap 'exit 1' HUP INT PIPE TERM
     for dir in $logs; do
         cat "$dir"/extremes-*.tsv 2>/dev/null || true
     done >"$results"

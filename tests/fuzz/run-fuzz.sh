@@ -33,6 +33,7 @@ else
     mkdir -p "$scratch"
 fi
 trap 'rm -rf "$scratch" "$scratch.time" "$scratch.budget"' EXIT
+trap 'exit 1' HUP INT PIPE TERM
 seeds=()
 for d in "$@"; do
     [ -d "$d" ] && seeds+=("$d")

@@ -68,6 +68,7 @@ run_tmp=$(mktemp -d "${TMPDIR:-/tmp}/sl-run.XXXXXX") || exit 2
 trap 'rm -rf "$run_tmp"' EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM HUP
+trap 'exit 141' PIPE
 user_tmp=${TMPDIR:-/tmp}
 TMPDIR=$run_tmp
 export TMPDIR

@@ -40,6 +40,7 @@ T=$(mktemp -d "${TMPDIR:-/tmp}/test-runner.XXXXXX") || exit 2
 trap 'rm -rf "$T"' EXIT
 trap 'exit 130' INT
 trap 'exit 143' TERM HUP
+trap 'exit 141' PIPE
 C=$T/tree
 
 # ---- the copy ------------------------------------------------------------

@@ -30,7 +30,7 @@ shift "$po_used"
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/check-diffs.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 
 passed=0
 failed=0

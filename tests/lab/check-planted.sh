@@ -61,7 +61,7 @@ compare=$build/tools/compare
 refs=$root/tests/reference
 work=$(mktemp -d "${TMPDIR:-/tmp}/planted.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 plain_make -C "$root" all >"$work/log" 2>&1 ||
     die "the project does not build: $(tail -n 5 "$work/log")"
 

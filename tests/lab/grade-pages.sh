@@ -57,7 +57,7 @@ lab_make -C "$dir/tests" tools >/dev/null 2>&1 || die "the tools of $dir/tests/t
 mkdir -p "$out"
 work=$(mktemp -d "${TMPDIR:-/tmp}/grade-pages.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 
 failed=0
 # The handout may be grade.sh's temporary copy, gone when the grade is read:

@@ -83,7 +83,7 @@ nn=${stage%%_*}
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/grade.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 
 echo "grade: lab $nn ($stage) in $1"
 

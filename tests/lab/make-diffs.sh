@@ -37,7 +37,7 @@ command -v git >/dev/null 2>&1 || die "git is needed (for git diff --no-index)"
 
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/make-diffs.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 
 # stage_diff PREV CUR - the diff from stage PREV (empty: from nothing) to
 # stage CUR, on stdout.

@@ -64,7 +64,7 @@ out=$2
 page=docs/stages/$stage.md
 tmp=
 trap 'if [ -n "$tmp" ]; then rm -rf "$tmp" "$tmp.list" "$tmp.now"; fi' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 
 # A warning, or under --strict an error.
 problem() {

@@ -31,7 +31,7 @@ render=${BUILDROOT:-$root/build/}07_pathtrace/render
 refs=$root/tests/reference
 work=$(mktemp -d "${TMPDIR:-/tmp}/masks.XXXXXX")
 trap 'rm -rf "$work"' EXIT
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 
 status=0
 for scene in $(ls "$refs" | sed -n -e 's/_direct\.pfm$//p' -e 's/_gi\.pfm$//p' | sort -u); do

@@ -34,7 +34,7 @@ if [ "$keep" -eq 1 ]; then
 else
     trap 'rm -rf "$T"' EXIT
 fi
-trap 'exit 1' HUP INT TERM
+trap 'exit 1' HUP INT PIPE TERM
 
 passed=0
 failed=0
@@ -518,6 +518,15 @@ test_diffs() {
     expect_exit check-diffs/stale 1 'FAIL diffs/02_b.diff: stale' "$LAB_DIR/check-diffs.sh" --root "$M"
     "$LAB_DIR/make-diffs.sh" --quiet --root "$M" >/dev/null 2>&1 || true
     check check-diffs/fixed "$LAB_DIR/check-diffs.sh" --root "$M"
+    # A reader that leaves early (| head): SIGPIPE ends the script through
+    # its trap, which removes its temporary directory.
+    mkdir -p "$T/piped"
+    TMPDIR=$T/piped "$LAB_DIR/check-diffs.sh" --root "$M" 2>/dev/null | head -n 0
+    if [ -z "$(ls -A "$T/piped")" ]; then
+        ok check-diffs/sigpipe-cleans-up
+    else
+        fail check-diffs/sigpipe-cleans-up "$(ls -A "$T/piped")"
+    fi
 }
 
 test_branches() {
