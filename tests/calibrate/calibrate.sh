@@ -9,8 +9,8 @@
 # (seeds never shared between the sets of one verdict), and runs on each
 # set the verdicts at their default settings:
 #   compare-2     compare R1 R2 REF (block t-tests, alpha 0.01)
-#   compare-4     compare R1 R2 R3 R4 REF (SETS/2 sets: the pairs' renders
-#                 four at a time, to spare the processor)
+#   compare-4     compare R1 R2 R3 R4 REF (the pool's renders four at a
+#                 time: the pool holds 4 * SETS renders)
 #   regions       compare --regions MASK R1 R2 REF: blocks and regions, one
 #                 family (what check-planted's controls and compare --regions run)
 #   grade-page    the same at the level of one make grade page (grade-pages.sh:
@@ -53,6 +53,8 @@
 #                     build/tools; e.g. an older build, on the same pool)
 #   --render PROGRAM  the correct stage 07 to render with (default
 #                     build/07_pathtrace/render; its pool is kept by its key)
+#   --check-plants    only check that each planted bug's change applies to
+#                     stage 07's sources as they are now (test-lab-tools)
 #   --help
 # Exit status: 0 written, 1 a render or a tool failed, 2 usage.
 set -eu
@@ -73,11 +75,35 @@ out=$root/docs/calibration
 threads=2
 tools=
 render=
+check_plants=0
 parse_options "--size size=VALUE --spp spp=VALUE --sets sets=VALUE --bug-sets bug_sets=VALUE
     --scenes scenes=VALUE --verdicts verdicts=VALUE --seed-offsets seed_offsets=VALUE
-    --out out=VALUE --threads threads=VALUE --tools tools=DIR --render render=VALUE" "$@"
+    --out out=VALUE --threads threads=VALUE --tools tools=DIR --render render=VALUE
+    --check-plants check_plants=1" "$@"
 shift "$po_used"
 [ $# -eq 0 ] || usage_error "unexpected argument: $1"
+
+# The planted code bugs: bug_plant BUG sets file (in stage 07) and expr
+# (the sed expression that plants it).
+BUGS="missing-cosine light-pdf leak"
+bug_plant() {
+    case $1 in
+        missing-cosine) file=light.c; expr='s|vec3_scale(light->radiance, cos_surface \* cos_light_area / dist2)|vec3_scale(light->radiance, cos_light_area / dist2)|' ;;
+        # The sample's density 1/A is in |edge1 x edge2| = A: 1.1 times the pdf is A / 1.1.
+        light-pdf) file=light.c; expr='s|vec3 normal_area = vec3_cross(light->edge1, light->edge2);|vec3 normal_area = vec3_scale(vec3_cross(light->edge1, light->edge2), 1 / (real)1.1);|' ;;
+        leak) file=geometry.c; expr='s|^\( *\)ray r = spawn_ray(h, vec3_normalize(vec3_sub(to, h->p)));|&\n\1r.o = vec3_madd(r.o, r.d, (real)0.05);|' ;;
+    esac
+}
+if [ "$check_plants" = 1 ]; then
+    for bug in $BUGS; do
+        bug_plant "$bug"
+        src=$root/stages/07_pathtrace/$file
+        ! sed -e "$expr" "$src" | cmp -s - "$src" ||
+            die "the planted $bug changes nothing in stages/07_pathtrace/$file (the source changed?)"
+    done
+    echo "calibrate: the planted bugs ($BUGS) apply to stage 07"
+    exit 0
+fi
 scenes=$(echo "$scenes" | tr ',' ' ')
 for n in "$size" "$spp" "$sets" "$bug_sets" "$seed_offsets" "$threads"; do
     case $n in '' | *[!0-9]*) usage_error "expected a whole number, got '$n'" ;; esac
@@ -241,6 +267,8 @@ for scene in $scenes; do
     mask=$(mask_of "$scene")
     dir=$pool/$scene
     need=$((2 * sets))
+    # compare-4's sets are four renders each: the pool holds 4 * sets.
+    ! has_verdict compare-4 || need=$((4 * sets))
     start=$(date +%s)
     pool_renders "$render" "$dir" "$scene" "$spp" "$BASE" "$need"
     sec=$(seconds_per_render "$dir")
@@ -310,8 +338,8 @@ for scene in $scenes; do
         tally control "$scene" none 0 "$sets" "$(count1 "$work/control")" $((2 * sets + ctl_renders)) \
             "$(awk -v n="$sets" -v p="$pair" -v x="$ctl_sec" 'BEGIN { print n * p + x }')"
     fi
-    ! has_verdict compare-4 || tally compare-4 "$scene" none 0 $((sets / 2)) "$(count1 "$work/compare-4")" \
-        $((2 * sets)) "$(awk -v n="$sets" -v p="$pair" 'BEGIN { print n * p }')"
+    ! has_verdict compare-4 || tally compare-4 "$scene" none 0 "$sets" "$(count1 "$work/compare-4")" \
+        $((4 * sets)) "$(awk -v n="$sets" -v p="$pair" 'BEGIN { print 2 * n * p }')"
     for b in region1 region2 region5 whole0.5; do
         pct=$(echo "$b" | sed 's/^[a-z]*//')
         [ "${b#region}" != "$b" ] || pct=
@@ -333,12 +361,8 @@ fi
 # ---- planted code bugs ------------------------------------------------------
 # plant_stage (lablib.sh) builds a copy of stage 07 with one sed applied.
 if [ "$bug_sets" -gt 0 ]; then
-    for bug in missing-cosine light-pdf leak; do
-        case $bug in
-            missing-cosine) file=light.c; expr='s|vec3_scale(radiance, cos_surface \* weight / pdf)|vec3_scale(radiance, weight / pdf)|' ;;
-            light-pdf) file=light.c; expr='s|real pdf = pdf_solid_angle > 0 ? pdf_solid_angle : pick \* dist2 / cos_light_area;|real pdf = (real)1.1 * (pdf_solid_angle > 0 ? pdf_solid_angle : pick * dist2 / cos_light_area);|' ;;
-            leak) file=geometry.c; expr='s|^\( *\)ray r = spawn_ray(h, vec3_normalize(vec3_sub(to, h->p)));|&\n\1r.o = vec3_madd(r.o, r.d, (real)0.05);|' ;;
-        esac
+    for bug in $BUGS; do
+        bug_plant "$bug"
         tree=$cal/bug-$bug
         plant_stage "$root" "$tree" 07_pathtrace "$file" -e "$expr" >"$work/plant.log" 2>&1 ||
             die "cannot plant $bug: $(tail -n 5 "$work/plant.log")"
