@@ -2,7 +2,7 @@
  * test_metrics.c - image error metrics (tests/lib/metrics.c) on synthetic
  * images whose answers are known by hand: identical images, constant
  * offsets, single bad pixels, an edge for the smooth mask, and block
- * statistics of renders with known noise.
+ * and window statistics of renders with known noise.
  */
 #include <math.h>
 #include <stdlib.h>
@@ -318,6 +318,59 @@ TEST(block_stats_detect_bias_only)
     image_free(&ref);
 }
 
+/* Windows of 2x2 blocks: a 2% bias over the 32x32 square x, y 16-47 of a
+ * 64x64 image, where every pixel's standard error is 0.02 * 16 / 3, is 3
+ * standard errors in each of its four blocks and 6 in the window that is
+ * those blocks; at the family level 0.01 over 16 blocks and 9 windows
+ * (75 tests, one at z = 3.8), only that window rejects. */
+TEST(block_windows_find_what_their_blocks_share)
+{
+    struct image ref = constant_image(64, 64, 1, 1, 1);
+    struct image render = constant_image(64, 64, 1, 1, 1);
+    double sigma = 0.02 * 16 / 3;
+    struct image variance = constant_image(64, 64, 0, 0, 0);
+    for (size_t i = 0; i < (size_t)64 * 64 * 3; i++) {
+        variance.rgb[i] = (float)(sigma * sigma);
+    }
+    for (int y = 16; y < 48; y++) {
+        for (int x = 16; x < 48; x++) {
+            set_pixel(&render, x, y, 1.02f);
+        }
+    }
+    struct metrics_block_params params = {.block_size = 16};
+    struct metrics_block_stats s;
+    double min_p;
+    CHECK(metrics_block_stats_variance(&render, &variance, 0, &ref, &params, &s, NULL));
+    CHECK(s.n_blocks == 16 && s.n_windows == 0 && s.windows == NULL);
+    CHECK_NEAR(s.blocks[1 * 4 + 1].t[0], 3, 1e-5);
+    CHECK_MSG(metrics_block_rejections(&s, 0.01, &min_p) == 0, "min p %g", min_p);
+    metrics_block_stats_free(&s);
+
+    params.windows = true;
+    CHECK(metrics_block_stats_variance(&render, &variance, 0, &ref, &params, &s, NULL));
+    CHECK(s.n_blocks == 16 && s.n_windows == 9);
+    const struct metrics_block *w = &s.windows[1 * 3 + 1];
+    CHECK(w->window && !s.blocks[0].window);
+    CHECK(w->x0 == 16 && w->y0 == 16 && w->w == 32 && w->h == 32);
+    CHECK(metrics_block_test(&s, 16 + 1 * 3 + 1) == w);
+    CHECK_NEAR(w->mean[1], 1.02, 1e-6);
+    CHECK_NEAR(w->var_mean[1], sigma * sigma / 1024, 1e-12);
+    CHECK_NEAR(w->t[1], 6, 1e-5);
+    CHECK_NEAR(s.windows[0].t[1], 1.5, 1e-5); /* a quarter of it biased */
+    CHECK(metrics_block_rejections(&s, 0.01, &min_p) == 3);
+    CHECK(w->p[0] == min_p);
+    metrics_block_stats_free(&s);
+
+    /* The reference's SE of a window combines its blocks': half theirs. */
+    params.ref_rel_se = 0.01;
+    CHECK(metrics_block_stats_variance(&render, &variance, 0, &ref, &params, &s, NULL));
+    CHECK_NEAR(s.windows[0].ref_se[2], 0.005, 1e-12);
+    metrics_block_stats_free(&s);
+    image_free(&ref);
+    image_free(&render);
+    image_free(&variance);
+}
+
 TEST_MAIN(
     TEST_ENTRY(identical_images_give_zero),
     TEST_ENTRY(constant_offset_known_values),
@@ -329,4 +382,5 @@ TEST_MAIN(
     TEST_ENTRY(smooth_mask_on_an_edge),
     TEST_ENTRY(smooth_mask_tolerance_and_black),
     TEST_ENTRY(block_stats_hand_computed),
-    TEST_ENTRY(block_stats_detect_bias_only))
+    TEST_ENTRY(block_stats_detect_bias_only),
+    TEST_ENTRY(block_windows_find_what_their_blocks_share))

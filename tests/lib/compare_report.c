@@ -113,7 +113,7 @@ bool
 compare_bias_hint_applies(const struct comparison *c)
 {
     for (int i = 0; i < c->n_failing; i++) {
-        const struct metrics_block *b = &c->blocks.blocks[c->failing[i]];
+        const struct metrics_block *b = metrics_block_test(&c->blocks, c->failing[i]);
         int ch = compare_block_channel(b);
         if (b->mean[ch] < b->ref_mean[ch]) {
             return true;
@@ -131,7 +131,7 @@ static const char measured_alarms[] =
 void
 compare_format_alarms(char *buf, size_t cap, const struct comparison *c)
 {
-    int tests = 3 * c->blocks.n_blocks + (c->regions ? c->regions->n_tests : 0);
+    int tests = 3 * (c->blocks.n_blocks + c->blocks.n_windows) + (c->regions ? c->regions->n_tests : 0);
     if (c->noise == NOISE_NONE) {
         snprintf(buf, cap, "%s", "");
         return;
@@ -193,11 +193,15 @@ put_numbers(FILE *f, const struct comparison *c)
     if (c->noise != NOISE_NONE) {
         fprintf(
             f,
-            "<tr><th>test</th><td>%d blocks of %d&times;%d pixels, 3 channels each, every test at "
+            "<tr><th>test</th><td>%d blocks of %d&times;%d pixels and %d windows of "
+            "%d&times;%d (2&times;2 blocks, overlapping), 3 channels each, every test at "
             "level %.2g (family level %g, Sidak-corrected); noise from %s</td></tr>\n",
             c->blocks.n_blocks,
             c->block_size,
             c->block_size,
+            c->blocks.n_windows,
+            2 * c->block_size,
+            2 * c->block_size,
             c->level,
             c->alpha,
             c->noise == NOISE_RENDERS ? "the spread of the renders" : "the variance image");
@@ -218,10 +222,10 @@ put_failing(FILE *f, const struct comparison *c)
     if (c->n_failing == 0) {
         return;
     }
-    fprintf(f, "<h2>Failing blocks (%d)</h2>\n<ul>\n", c->n_failing);
+    fprintf(f, "<h2>Failing blocks and windows (%d)</h2>\n<ul>\n", c->n_failing);
     for (int i = 0; i < c->n_failing && i < 100; i++) {
         char line[256];
-        compare_describe_block(line, sizeof line, &c->blocks.blocks[c->failing[i]]);
+        compare_describe_block(line, sizeof line, metrics_block_test(&c->blocks, c->failing[i]));
         fputs("<li>", f);
         put_escaped(f, line);
         fputs("</li>\n", f);

@@ -52,9 +52,10 @@ struct comparison {
 
     struct metrics m;
     struct metrics_block_stats blocks; /* n_blocks 0 when NOISE_NONE */
-    double level; /* the Sidak-corrected level of one block test */
-    int *failing; /* indices of failing blocks, most significant first */
+    double level; /* the Sidak-corrected level of one block or window test */
+    int *failing; /* failing tests (metrics_block_test's index), most significant first */
     int n_failing;
+    int n_failing_windows; /* of them, windows */
     int worst; /* the block whose luminance is furthest off, relatively */
     double worst_error; /* its signed relative error */
     double map_range; /* the error map's scale, +-map_range */

@@ -472,6 +472,83 @@ metrics_block_stats(
     return true;
 }
 
+/* Window w of s: blocks (i..i+1, j..j+1) merged.  The variance of its
+ * mean is the sum of its blocks' (n_b^2 var_mean_b, each already at least
+ * its neighbourhood's) over N^2; its degrees of freedom are
+ * Welch-Satterthwaite's over its pixels, as for a block; the reference's
+ * SE combines its blocks' the same way. */
+static void
+fill_window(
+    const struct image *render,
+    const double *sums,
+    double pixel_dof,
+    const struct image *ref,
+    const struct metrics_block_params *params,
+    const struct metrics_block_stats *s,
+    int w,
+    struct metrics_block *out)
+{
+    int i = w % (s->blocks_x - 1), j = w / (s->blocks_x - 1);
+    const struct metrics_block *b00 = &s->blocks[j * s->blocks_x + i];
+    *out = (struct metrics_block){
+        .x0 = b00->x0,
+        .y0 = b00->y0,
+        .w = b00->w + b00[1].w,
+        .h = b00->h + b00[s->blocks_x].h,
+        .window = true,
+    };
+    double n_total = (double)out->w * (double)out->h, var[3] = {0}, se2[3] = {0}, own[6] = {0};
+    for (int q = 0; q < 4; q++) {
+        int index = (j + q / 2) * s->blocks_x + i + q % 2;
+        const struct metrics_block *b = &s->blocks[index];
+        double n = (double)b->w * (double)b->h;
+        for (int c = 0; c < 3; c++) {
+            var[c] += n * n * b->var_mean[c];
+            se2[c] += n * n * b->ref_se[c] * b->ref_se[c];
+            own[c] += sums[6 * (size_t)index + (size_t)c];
+            own[3 + c] += sums[6 * (size_t)index + 3 + (size_t)c];
+        }
+    }
+    block_mean(render, out, out->mean);
+    block_mean(ref, out, out->ref_mean);
+    double dof = INFINITY;
+    for (int c = 0; c < 3; c++) {
+        out->var_mean[c] = var[c] / (n_total * n_total);
+        out->ref_se[c] = sqrt(se2[c]) / n_total;
+        if (pixel_dof > 0 && own[3 + c] > 0) {
+            dof = fmin(dof, own[c] * own[c] / (own[3 + c] / pixel_dof));
+        }
+    }
+    for (int c = 0; c < 3; c++) {
+        test_channel(out, c, dof, params->ref_dof);
+    }
+}
+
+static bool
+fill_windows(
+    const struct image *render,
+    const double *sums,
+    double pixel_dof,
+    const struct image *ref,
+    const struct metrics_block_params *params,
+    struct metrics_block_stats *s,
+    struct diag *err)
+{
+    if (s->blocks_x < 2 || s->blocks_y < 2) {
+        return true;
+    }
+    s->n_windows = (s->blocks_x - 1) * (s->blocks_y - 1);
+    s->windows = calloc((size_t)s->n_windows, sizeof *s->windows);
+    if (!s->windows) {
+        diag_set(err, NULL, 0, 0, "out of memory for %d windows", s->n_windows);
+        return false;
+    }
+    for (int w = 0; w < s->n_windows; w++) {
+        fill_window(render, sums, pixel_dof, ref, params, s, w, &s->windows[w]);
+    }
+    return true;
+}
+
 bool
 metrics_block_stats_variance(
     const struct image *render,
@@ -505,26 +582,38 @@ metrics_block_stats_variance(
     for (int i = 0; i < out->n_blocks; i++) {
         fill_block_variance(render, sums, out, pixel_dof, ref, params, i, &out->blocks[i]);
     }
+    bool ok = !params->windows || fill_windows(render, sums, pixel_dof, ref, params, out, err);
     free(sums);
-    return true;
+    if (!ok) {
+        metrics_block_stats_free(out);
+    }
+    return ok;
 }
 
 void
 metrics_block_stats_free(struct metrics_block_stats *s)
 {
     free(s->blocks);
+    free(s->windows);
     *s = (struct metrics_block_stats){0};
+}
+
+const struct metrics_block *
+metrics_block_test(const struct metrics_block_stats *s, int i)
+{
+    return i < s->n_blocks ? &s->blocks[i] : &s->windows[i - s->n_blocks];
 }
 
 size_t
 metrics_block_rejections(const struct metrics_block_stats *s, double alpha, double *min_p)
 {
-    double level = stattest_sidak(alpha, 3.0 * s->n_blocks);
+    int n = s->n_blocks + s->n_windows;
+    double level = stattest_sidak(alpha, 3.0 * n);
     double lowest = 1;
     size_t rejected = 0;
-    for (int i = 0; i < s->n_blocks; i++) {
+    for (int i = 0; i < n; i++) {
         for (int c = 0; c < 3; c++) {
-            double p = s->blocks[i].p[c];
+            double p = metrics_block_test(s, i)->p[c];
             lowest = fmin(lowest, p);
             rejected += !(p >= level);
         }

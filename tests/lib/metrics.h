@@ -124,6 +124,12 @@ struct metrics_block_params {
     /* Degrees of freedom of the reference's SE: batches - 1 (META.json's
      * "batches"), or 0 for infinitely many. */
     double ref_dof;
+    /* metrics_block_stats_variance only: also test every window of 2x2
+     * neighbouring blocks (overlapping, one block apart).  A bias the size
+     * of a window but not aligned with the blocks is split over up to nine
+     * blocks; the window that covers most of it sees it with half a
+     * block's standard error. */
+    bool windows;
 };
 
 struct metrics_block {
@@ -135,6 +141,7 @@ struct metrics_block {
     double t[3];
     double dof[3];
     double p[3];
+    bool window; /* a window of 2x2 blocks (params.windows), not a block */
 };
 
 struct metrics_block_stats {
@@ -142,7 +149,15 @@ struct metrics_block_stats {
     int n_blocks; /* blocks_x * blocks_y; blocks in row-major order */
     int k; /* renders */
     struct metrics_block *blocks;
+    /* With params.windows: (blocks_x - 1) * (blocks_y - 1) windows in
+     * row-major order, window (i, j) the blocks (i..i+1, j..j+1). */
+    int n_windows;
+    struct metrics_block *windows;
 };
+
+/* Test i of s's family, 0 <= i < n_blocks + n_windows: the blocks, then
+ * the windows. */
+const struct metrics_block *metrics_block_test(const struct metrics_block_stats *s, int i);
 
 /* Statistics of k >= 2 renders (all the reference's size) against ref.
  * Fails (diag) on bad parameters, mismatched sizes or no memory. */
@@ -165,7 +180,9 @@ bool metrics_block_stats(
  * 3x3 blocks around it gives: where rare bright paths (caustics) carry
  * light, renders that missed them look darker and less noisy at once,
  * and the block's own variance alone would accuse correct code
- * (metrics.c, docs/calibration/README.md).  out->k is 1. */
+ * (metrics.c, docs/calibration/README.md).  out->k is 1.  With
+ * params->windows, also the windows of 2x2 blocks: a window's variance is
+ * the sum of its blocks' (each at least its neighbourhood's). */
 bool metrics_block_stats_variance(
     const struct image *render,
     const struct image *variance,
@@ -184,7 +201,7 @@ void metrics_format_plain(char *buf, size_t cap, double v);
 /* Free the blocks; accepts a zero-initialised struct. */
 void metrics_block_stats_free(struct metrics_block_stats *s);
 
-/* How many of the 3 * n_blocks tests reject at the Sidak-corrected level
+/* How many of the 3 * (n_blocks + n_windows) tests reject at the Sidak-corrected level
  * for family level alpha (e.g. 0.01); *min_p (may be NULL) gets the
  * smallest p-value. */
 size_t metrics_block_rejections(const struct metrics_block_stats *s, double alpha, double *min_p);

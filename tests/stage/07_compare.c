@@ -209,7 +209,8 @@ most_precise_block(
     const double weights[2] = {1, 1};
     struct image mean = {0}, variance = {0};
     struct diag err = {0};
-    struct metrics_block_params params = {.block_size = BLOCK};
+    /* compare's family: the blocks and the windows of 2x2 blocks. */
+    struct metrics_block_params params = {.block_size = BLOCK, .windows = true};
     int best = -1;
     if (estimate_combine(pair, weights, 2, &mean, &variance, &err)
         && metrics_block_stats_variance(&mean, &variance, 1, ref, &params, s, &err)) {
@@ -226,10 +227,10 @@ most_precise_block(
         }
         /* More than BIAS where the block's few degrees of freedom would
          * leave BIAS under the level of one of compare's tests (Sidak over
-         * the blocks' three channels at compare's default alpha, which is
-         * PATHCHECK_ALPHA), with a tenfold margin: the specular box's
+         * the blocks' and windows' three channels at compare's default
+         * alpha, which is PATHCHECK_ALPHA), with a tenfold margin: the specular box's
          * clearest block has 4 to 7 degrees of freedom at some seeds. */
-        double level = stattest_sidak(PATHCHECK_ALPHA, 3.0 * s->n_blocks);
+        double level = stattest_sidak(PATHCHECK_ALPHA, 3.0 * (s->n_blocks + s->n_windows));
         *bias = BIAS;
         while (best >= 0 && *bias < 0.5
                && stattest_t_pvalue(*bias / BIAS * best_t, s->blocks[best].dof[1]) > level / 10) {

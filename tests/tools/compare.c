@@ -60,11 +60,13 @@ usage(FILE *f)
         "\n"
         "Give two or more renders of the same scene and options with different\n"
         "--seed values (their mean is compared; each should have the same spp), or\n"
-        "one render and --variance.  Each BLOCKxBLOCK block and channel is then\n"
-        "t-tested against the reference at the level --alpha, Sidak-corrected for\n"
-        "the number of tests: 'consistent with the reference (noise only)' or\n"
-        "'biased', with the failing blocks named.  With one render alone only the\n"
-        "numbers are printed: noise cannot be told from bias.\n"
+        "one render and --variance.  Each BLOCKxBLOCK block, each window of 2x2\n"
+        "blocks (overlapping: a bias the size of a window is seen nearly whole\n"
+        "wherever it lies) and each channel is then t-tested against the reference\n"
+        "at the level --alpha, Sidak-corrected for the number of tests: 'consistent\n"
+        "with the reference (noise only)' or 'biased', with the failing blocks and\n"
+        "windows named.  With one render alone only the numbers are printed: noise\n"
+        "cannot be told from bias.\n"
         "\n"
         "  --variance FILE     per-pixel variance of RENDER's pixels (the squared\n"
         "                      standard error), e.g. written by merge --variance\n"
@@ -77,7 +79,8 @@ usage(FILE *f)
         "  --ref-dof N         its degrees of freedom (default: from META.json beside\n"
         "                      the reference, else 0 and 0: an exact reference)\n"
         "  --map FILE.png      write the error map: signed relative error, blue\n"
-        "                      darker, red brighter, failing blocks outlined\n"
+        "                      darker, red brighter, failing blocks and windows\n"
+        "                      outlined\n"
         "  --range R           the map's scale is -R..+R (default: automatic)\n"
         "  --html FILE.html    write a self-contained report page\n"
         "  --title TEXT        the report page's title\n"
@@ -411,7 +414,8 @@ compare_describe_block(char *buf, size_t cap, const struct metrics_block *b)
     int n = snprintf(
         buf,
         cap,
-        "the block at x %d-%d, y %d-%d is ",
+        "the %s at x %d-%d, y %d-%d is ",
+        b->window ? "window" : "block",
         b->x0,
         b->x0 + b->w - 1,
         b->y0,
@@ -434,19 +438,20 @@ block_min_p(const struct metrics_block *b)
     return fmin(b->p[0], fmin(b->p[1], b->p[2]));
 }
 
-/* Sort failing blocks by their smallest p (most significant first). */
-static const struct metrics_block *sort_blocks;
+/* Sort failing blocks and windows by their smallest p (most significant
+ * first). */
+static const struct metrics_block_stats *sort_blocks;
 
 static int
 by_significance(const void *a, const void *b)
 {
-    double pa = block_min_p(&sort_blocks[*(const int *)a]);
-    double pb = block_min_p(&sort_blocks[*(const int *)b]);
+    double pa = block_min_p(metrics_block_test(sort_blocks, *(const int *)a));
+    double pb = block_min_p(metrics_block_test(sort_blocks, *(const int *)b));
     return (pa > pb) - (pa < pb);
 }
 
-/* The block tests and the list of failing blocks; other_tests more tests
- * (the regions') share the family level alpha with them. */
+/* The block and window tests and the list of those failing; other_tests
+ * more tests (the regions') share the family level alpha with them. */
 static bool
 test_blocks(struct comparison *c, int other_tests, struct diag *err)
 {
@@ -456,6 +461,7 @@ test_blocks(struct comparison *c, int other_tests, struct diag *err)
         .block_size = c->block_size,
         .ref_rel_se = c->ref_rel_se / c->block_size,
         .ref_dof = c->ref_dof,
+        .windows = true,
     };
     if (!metrics_block_stats_variance(
             &c->render,
@@ -467,18 +473,21 @@ test_blocks(struct comparison *c, int other_tests, struct diag *err)
             err)) {
         return false;
     }
-    c->level = stattest_sidak(c->alpha, 3.0 * c->blocks.n_blocks + other_tests);
-    c->failing = malloc((size_t)c->blocks.n_blocks * sizeof *c->failing);
+    int n = c->blocks.n_blocks + c->blocks.n_windows;
+    c->level = stattest_sidak(c->alpha, 3.0 * n + other_tests);
+    c->failing = malloc((size_t)n * sizeof *c->failing);
     if (!c->failing) {
         diag_set(err, NULL, 0, 0, "out of memory");
         return false;
     }
-    for (int i = 0; i < c->blocks.n_blocks; i++) {
-        if (!(block_min_p(&c->blocks.blocks[i]) >= c->level)) {
+    for (int i = 0; i < n; i++) {
+        const struct metrics_block *b = metrics_block_test(&c->blocks, i);
+        if (!(block_min_p(b) >= c->level)) {
             c->failing[c->n_failing++] = i;
+            c->n_failing_windows += b->window;
         }
     }
-    sort_blocks = c->blocks.blocks;
+    sort_blocks = &c->blocks;
     qsort(c->failing, (size_t)c->n_failing, sizeof *c->failing, by_significance);
     return true;
 }
@@ -546,15 +555,20 @@ decide(struct comparison *c)
         snprintf(
             c->verdict,
             sizeof c->verdict,
-            "biased: %d of %d blocks differ from the reference by more than noise",
-            c->n_failing,
-            c->blocks.n_blocks);
+            "biased: %d of %d blocks and %d of %d windows differ from the reference by more than "
+            "noise",
+            c->n_failing - c->n_failing_windows,
+            c->blocks.n_blocks,
+            c->n_failing_windows,
+            c->blocks.n_windows);
     } else {
         snprintf(
             c->verdict,
             sizeof c->verdict,
-            "consistent with the reference (noise only): none of %d blocks differs by more than noise",
-            c->blocks.n_blocks);
+            "consistent with the reference (noise only): none of %d blocks and %d windows differs by "
+            "more than noise",
+            c->blocks.n_blocks,
+            c->blocks.n_windows);
     }
 }
 
@@ -634,18 +648,26 @@ print_text(const struct comparison *c)
                 "note       the renders are identical (a deterministic stage, or one seed twice):\n"
                 "           no noise, so any difference beyond the reference's own noise counts\n");
         }
-        printf(
-            "tests      %d blocks of %dx%d x 3 channels, each at %.2g (alpha %g, Sidak-corrected)\n",
+        char tests[256];
+        snprintf(
+            tests,
+            sizeof tests,
+            "%d blocks of %dx%d and %d windows of %dx%d (2x2 blocks, overlapping) x 3 channels, "
+            "each at %.2g (alpha %g, Sidak-corrected)",
             c->blocks.n_blocks,
             c->block_size,
             c->block_size,
+            c->blocks.n_windows,
+            2 * c->block_size,
+            2 * c->block_size,
             c->level,
             c->alpha);
+        print_wrapped("tests      ", tests);
     }
     printf("verdict    %s\n", c->verdict);
     for (int i = 0; i < c->n_failing && i < MAX_LISTED; i++) {
         char line[256];
-        compare_describe_block(line, sizeof line, &c->blocks.blocks[c->failing[i]]);
+        compare_describe_block(line, sizeof line, metrics_block_test(&c->blocks, c->failing[i]));
         printf("           %s\n", line);
     }
     if (c->n_failing > MAX_LISTED) {
@@ -671,7 +693,7 @@ draw_map(const struct comparison *c, double range, struct image *map, struct dia
         return false;
     }
     for (int i = 0; i < c->n_failing; i++) {
-        const struct metrics_block *b = &c->blocks.blocks[c->failing[i]];
+        const struct metrics_block *b = metrics_block_test(&c->blocks, c->failing[i]);
         boxes[i] = (struct errmap_box){b->x0, b->y0, b->w, b->h};
     }
     bool ok = errmap_draw(&c->render, &c->reference, range, c->mask, boxes, c->n_failing, map, err);
@@ -686,9 +708,9 @@ compare_regions(struct args *a, struct diag *err)
 {
     struct comparison *c = &a->c;
     int bs = c->block_size;
-    int block_tests = c->noise == NOISE_NONE ? 0
-                                             : 3 * ((c->render.width + bs - 1) / bs)
-                                                   * ((c->render.height + bs - 1) / bs);
+    int bx = (c->render.width + bs - 1) / bs, by = (c->render.height + bs - 1) / bs;
+    int windows = bx > 1 && by > 1 ? (bx - 1) * (by - 1) : 0;
+    int block_tests = c->noise == NOISE_NONE ? 0 : 3 * (bx * by + windows);
     struct image labels = {0};
     /* An EXR written with --aov holds the pass as its layer "feature". */
     bool layered = image_format_from_path(a->regions_path) == IMAGE_FORMAT_EXR;
