@@ -334,6 +334,22 @@ block_variance_sums(const struct image *variance, const struct metrics_block *b,
     }
 }
 
+/* The degrees of freedom of a sum of per-pixel variances (own: sum v and
+ * sum v^2 per channel), each of pixel_dof (0: exact, infinitely many):
+ * Welch-Satterthwaite's (sum v)^2 / sum(v^2 / d), one for the three
+ * channels, the smallest: they share pixels. */
+static double
+sum_dof(const double own[6], double pixel_dof)
+{
+    double dof = INFINITY;
+    for (int c = 0; c < 3; c++) {
+        if (pixel_dof > 0 && own[3 + c] > 0) {
+            dof = fmin(dof, own[c] * own[c] / (own[3 + c] / pixel_dof));
+        }
+    }
+    return dof;
+}
+
 /* Block `index` of one estimate with per-pixel variances: the pixels of a
  * block are independent estimates, so the variance of their mean is
  * sum(v_i) / n^2, and its degrees of freedom Welch-Satterthwaite's,
@@ -379,15 +395,10 @@ fill_block_variance(
     }
     block_mean(render, b, b->mean);
     double n = (double)b->w * (double)b->h;
-    double dof = INFINITY;
     for (int c = 0; c < 3; c++) {
         b->var_mean[c] = fmax(own[c], n * around[c] / pixels_around) / (n * n);
-        if (pixel_dof > 0 && own[3 + c] > 0) {
-            dof = fmin(dof, own[c] * own[c] / (own[3 + c] / pixel_dof));
-        }
     }
-    /* One dof for the three channels, the smallest: they share pixels. */
-    test_block(ref, params, index, dof, b);
+    test_block(ref, params, index, sum_dof(own, pixel_dof), b);
 }
 
 static bool
@@ -511,15 +522,10 @@ fill_window(
     }
     block_mean(render, out, out->mean);
     block_mean(ref, out, out->ref_mean);
-    double dof = INFINITY;
+    double dof = sum_dof(own, pixel_dof);
     for (int c = 0; c < 3; c++) {
         out->var_mean[c] = var[c] / (n_total * n_total);
         out->ref_se[c] = sqrt(se2[c]) / n_total;
-        if (pixel_dof > 0 && own[3 + c] > 0) {
-            dof = fmin(dof, own[c] * own[c] / (own[3 + c] / pixel_dof));
-        }
-    }
-    for (int c = 0; c < 3; c++) {
         test_channel(out, c, dof, params->ref_dof);
     }
 }
