@@ -15,8 +15,8 @@
 # non-fiction, Brysbaert 2019) with code at 10 lines a minute (600 lines an
 # hour, a first careful read), and a slower one, prose at 200 and code at
 # 5 lines a minute (300 an hour, the middle of the 200-400 lines an hour
-# that code review studies find effective).  Prints a
-# markdown table.  Exit status: 0, 2 usage.
+# that code review studies find effective).  Prints a markdown table.
+# Exit status: 0, 2 usage.
 set -eu
 
 PROG=reading-time.sh
@@ -71,8 +71,9 @@ for dir in "$root"/stages/[0-9][0-9]_*; do
         words=$(($2 + $([ -n "$page" ] && page_words "$page" || echo 0)))
         what="$name: lesson page and code"
     else
-        set -- $(diff -ruN "$prev" "$dir" | sed -n 's/^+\([^+]\)/\1/p; s/^+$//p' | c_counts) \
-            $(diff -ruN "$prev" "$dir" | sed -n 's/^-\([^-]\)/\1/p; s/^-$//p' | c_counts)
+        diff=$(diff -ruN "$prev" "$dir" || true)
+        set -- $(printf '%s\n' "$diff" | sed -n 's/^+\([^+]\)/\1/p; s/^+$//p' | c_counts) \
+            $(printf '%s\n' "$diff" | sed -n 's/^-\([^-]\)/\1/p; s/^-$//p' | c_counts)
         code=$(($1 + $3))
         words=$(($2 + $4))
         what="${prev##*/} → $name: the diff"

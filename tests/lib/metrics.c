@@ -436,6 +436,32 @@ check_block_inputs(
     return true;
 }
 
+/* The block size used (at most IMAGE_MAX_DIM: width + size - 1 fits an int) and
+ * the blocks across (*bx) and down (*by) of a width x height image. */
+static int
+block_grid(int width, int height, int block_size, int *bx, int *by)
+{
+    int bs = block_size < IMAGE_MAX_DIM ? block_size : IMAGE_MAX_DIM;
+    *bx = (width + bs - 1) / bs;
+    *by = (height + bs - 1) / bs;
+    return bs;
+}
+
+/* The windows of 2x2 blocks of a bx x by grid of blocks. */
+static int
+windows_of(int bx, int by)
+{
+    return bx > 1 && by > 1 ? (bx - 1) * (by - 1) : 0;
+}
+
+int
+metrics_block_test_count(int width, int height, int block_size, bool windows)
+{
+    int bx, by;
+    block_grid(width, height, block_size, &bx, &by);
+    return bx * by + (windows ? windows_of(bx, by) : 0);
+}
+
 /* Cut ref's frame into blocks (rectangles set, statistics not). */
 static bool
 block_layout(
@@ -444,9 +470,7 @@ block_layout(
     struct metrics_block_stats *out,
     struct diag *err)
 {
-    int bs = params->block_size < IMAGE_MAX_DIM ? params->block_size : IMAGE_MAX_DIM;
-    out->blocks_x = (ref->width + bs - 1) / bs;
-    out->blocks_y = (ref->height + bs - 1) / bs;
+    int bs = block_grid(ref->width, ref->height, params->block_size, &out->blocks_x, &out->blocks_y);
     out->n_blocks = out->blocks_x * out->blocks_y;
     out->blocks = calloc((size_t)out->n_blocks, sizeof *out->blocks);
     if (!out->blocks) {
@@ -530,31 +554,6 @@ fill_window(
     }
 }
 
-static bool
-fill_windows(
-    const struct image *render,
-    const double *sums,
-    double pixel_dof,
-    const struct image *ref,
-    const struct metrics_block_params *params,
-    struct metrics_block_stats *s,
-    struct diag *err)
-{
-    if (s->blocks_x < 2 || s->blocks_y < 2) {
-        return true;
-    }
-    s->n_windows = (s->blocks_x - 1) * (s->blocks_y - 1);
-    s->windows = calloc((size_t)s->n_windows, sizeof *s->windows);
-    if (!s->windows) {
-        diag_set(err, NULL, 0, 0, "out of memory for %d windows", s->n_windows);
-        return false;
-    }
-    for (int w = 0; w < s->n_windows; w++) {
-        fill_window(render, sums, pixel_dof, ref, params, s, w, &s->windows[w]);
-    }
-    return true;
-}
-
 bool
 metrics_block_stats_variance(
     const struct image *render,
@@ -588,9 +587,15 @@ metrics_block_stats_variance(
     for (int i = 0; i < out->n_blocks; i++) {
         fill_block_variance(render, sums, out, pixel_dof, ref, params, i, &out->blocks[i]);
     }
-    bool ok = !params->windows || fill_windows(render, sums, pixel_dof, ref, params, out, err);
+    out->n_windows = params->windows ? windows_of(out->blocks_x, out->blocks_y) : 0;
+    out->windows = out->n_windows ? calloc((size_t)out->n_windows, sizeof *out->windows) : NULL;
+    bool ok = out->n_windows == 0 || out->windows;
+    for (int w = 0; ok && w < out->n_windows; w++) {
+        fill_window(render, sums, pixel_dof, ref, params, out, w, &out->windows[w]);
+    }
     free(sums);
     if (!ok) {
+        diag_set(err, NULL, 0, 0, "out of memory for %d windows", out->n_windows);
         metrics_block_stats_free(out);
     }
     return ok;

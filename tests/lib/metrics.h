@@ -155,6 +155,11 @@ struct metrics_block_stats {
     struct metrics_block *windows;
 };
 
+/* How many blocks (and, with windows, windows of 2x2 blocks) a
+ * width x height image is cut into: the tests per channel of
+ * metrics_block_stats_variance, before it runs. */
+int metrics_block_test_count(int width, int height, int block_size, bool windows);
+
 /* Test i of s's family, 0 <= i < n_blocks + n_windows: the blocks, then
  * the windows. */
 const struct metrics_block *metrics_block_test(const struct metrics_block_stats *s, int i);

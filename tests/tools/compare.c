@@ -707,10 +707,13 @@ static bool
 compare_regions(struct args *a, struct diag *err)
 {
     struct comparison *c = &a->c;
-    int bs = c->block_size;
-    int bx = (c->render.width + bs - 1) / bs, by = (c->render.height + bs - 1) / bs;
-    int windows = bx > 1 && by > 1 ? (bx - 1) * (by - 1) : 0;
-    int block_tests = c->noise == NOISE_NONE ? 0 : 3 * (bx * by + windows);
+    int block_tests = c->noise == NOISE_NONE
+                          ? 0
+                          : 3 * metrics_block_test_count(
+                                    c->render.width,
+                                    c->render.height,
+                                    c->block_size,
+                                    true);
     struct image labels = {0};
     /* An EXR written with --aov holds the pass as its layer "feature". */
     bool layered = image_format_from_path(a->regions_path) == IMAGE_FORMAT_EXR;
