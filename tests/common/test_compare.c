@@ -378,6 +378,88 @@ TEST(one_render_and_its_variance_image)
     image_free(&var);
 }
 
+/* The text of compare's line `label` (e.g. "power      ") with its
+ * continuation lines joined, into buf; "" when there is no such line. */
+static void
+joined_line(const char *out, const char *label, char *buf, size_t cap)
+{
+    size_t n = 0, indent = strlen(label);
+    const char *p = strstr(out, label);
+    buf[0] = 0;
+    if (!p) {
+        return;
+    }
+    for (p += indent; *p && n + 1 < cap; p++) {
+        if (*p == '\n') {
+            if (strncmp(p + 1, "           ", indent) != 0) {
+                break;
+            }
+            p += indent;
+            buf[n++] = ' ';
+            continue;
+        }
+        buf[n++] = *p;
+    }
+    buf[n] = 0;
+}
+
+/* What compare says it can find, on one render with its exact variance
+ * (relative 4 SIGMA per pixel, then 2 SIGMA): the windows are 32x32, 32x24 and (at the
+ * corner) 24x24, cut by the image's edges, so the median window's
+ * detectable bias is (z_level + z_0.9) SIGMA / sqrt(768) and 9 windows in
+ * 10 reach (z_level + z_0.9) SIGMA / 24, with SIGMA the pixels' relative
+ * noise and z_level the level of one of the 3 x (15 blocks + 8 windows)
+ * tests; four times the samples halve both. */
+TEST(power_line_says_what_a_comparison_can_find)
+{
+    struct image ref = {0}, a = {0}, var = {0};
+    char out[CAP], line[1024];
+    make_reference(&ref);
+    struct diag err;
+    CHECK(image_alloc(&var, W, H, &err));
+    const char *const args[] = {TMP("a.pfm"), "--variance", TMP("var.pfm"), TMP("ref.pfm"), NULL};
+    make_render(&ref, 78, 0, 0, 1, &a);
+    CHECK(write_image(&a, "a.pfm") && write_image(&ref, "ref.pfm"));
+    double z = 3.798377; /* the two-sided normal critical value at 1 - 0.99^(1/69) */
+    double half = 0, most = 0, times = 0;
+    for (int quarter = 0; quarter < 2; quarter++) {
+        double scale = quarter ? 4 : 16; /* SIGMA 4 and 2 times as large: 2% needs more */
+        for (size_t i = 0; var.rgb && i < (size_t)W * H * 3; i++) {
+            var.rgb[i] = (float)(scale * SIGMA * SIGMA * ref.rgb[i] * ref.rgb[i]);
+        }
+        CHECK(write_image(&var, "var.pfm"));
+        CHECK_MSG(compare(args, out) == 0, "%s", out);
+        joined_line(out, "power      ", line, sizeof line);
+        double h, m, t;
+        int got = sscanf(
+            line,
+            "a bias that brightens or darkens a 32x32 window by %lf%% is found 9 times in 10 in "
+            "half the windows, and one of %lf%% in 9 windows of 10; to find 2.0%% so in 9 windows "
+            "of 10: about %lf times",
+            &h,
+            &m,
+            &t);
+        CHECK_MSG(got == 3, "%s", out);
+        if (!quarter) {
+            CHECK_REL(h / 100, (z + 1.28155) * 4 * SIGMA / sqrt(768), 0.05);
+            CHECK_REL(m / 100, (z + 1.28155) * 4 * SIGMA / 24, 0.05);
+            CHECK_REL(t, pow(m / 100 / 0.02, 2), 0.05);
+            half = h, most = m, times = t;
+        } else {
+            /* The line prints two significant digits: 1.85 may read 1.8. */
+            CHECK_REL(h, half / 2, 0.05);
+            CHECK_REL(m, most / 2, 0.05);
+            CHECK_REL(t, times / 4, 0.06);
+        }
+    }
+    /* With no noise estimate there is no test, and no power line. */
+    const char *const alone[] = {TMP("a.pfm"), TMP("ref.pfm"), NULL};
+    CHECK(compare(alone, out) == 0 && !strstr(out, "power "));
+    image_free(&a);
+    image_free(&ref);
+    image_free(&var);
+}
+
 TEST(one_render_alone_is_compared_but_not_tested)
 {
     char out[CAP];
@@ -637,6 +719,7 @@ TEST(report_page_is_one_self_contained_file)
         && strstr(html, "url(") == NULL);
     CHECK(strstr(html, "lab &lt;07&gt; &amp; &quot;friends&quot;") && !strstr(html, "<07>"));
     CHECK(strstr(html, "biased: 1 of 15 blocks") && strstr(html, "x 16-31, y 16-31"));
+    CHECK(strstr(html, "id=\"power\">What it can find: a bias that brightens or darkens"));
     CHECK(strstr(html, "name=\"viewport\""));
     free(html);
 }
@@ -848,6 +931,7 @@ TEST_MAIN(
     TEST_ENTRY(renders_with_only_noise_are_consistent_for_many_seeds),
     TEST_ENTRY(a_planted_two_percent_bias_is_found_and_named),
     TEST_ENTRY(one_render_and_its_variance_image),
+    TEST_ENTRY(power_line_says_what_a_comparison_can_find),
     TEST_ENTRY(one_render_alone_is_compared_but_not_tested),
     TEST_ENTRY(mask_smooth_leaves_edges_out),
     TEST_ENTRY(identical_renders_are_called_out),

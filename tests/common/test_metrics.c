@@ -12,6 +12,7 @@
 #include "image.h"
 #include "metrics.h"
 #include "rng.h"
+#include "stattest.h"
 
 /* A w x h image with every pixel (r, g, b); aborts the test on failure. */
 static struct image
@@ -371,6 +372,122 @@ TEST(block_windows_find_what_their_blocks_share)
     image_free(&variance);
 }
 
+/* What the tests can find, by hand: the window x, y 16-47 of the test
+ * above has standard error sigma / 32 in every channel, with exact
+ * variances (a z-test), so it finds a bias delta with probability 0.9 when
+ * delta = (z_level + z_0.9) sigma / 32. */
+TEST(detectable_bias_hand_computed)
+{
+    struct image ref = constant_image(64, 64, 1, 0.5f, 2);
+    double sigma = 0.01;
+    struct image variance = constant_image(64, 64, 0, 0, 0);
+    for (size_t i = 0; i < (size_t)64 * 64 * 3; i++) {
+        variance.rgb[i] = (float)(sigma * sigma * ref.rgb[i] * ref.rgb[i]); /* relative: sigma */
+    }
+    struct metrics_block_params params = {.block_size = 16, .windows = true};
+    struct metrics_block_stats s;
+    CHECK(metrics_block_stats_variance(&ref, &variance, 0, &ref, &params, &s, NULL));
+    double level = stattest_sidak(0.01, 75);
+    double z_level = stattest_t_critical(level, INFINITY), z_power = 1.2815515655446004;
+    double delta = (z_level + z_power) * sigma / 32;
+    const struct metrics_block *w = &s.windows[4];
+    CHECK_REL(metrics_detectable_bias(w, level, 0.9), delta, 1e-6);
+    /* Twice that bias needs a quarter of the samples; the same, the same. */
+    CHECK_REL(metrics_samples_for_bias(w, level, 0.9, 2 * delta), 0.25, 1e-5);
+    CHECK_REL(metrics_samples_for_bias(w, level, 0.9, delta), 1, 1e-5);
+    struct metrics_power power;
+    CHECK(metrics_block_power(&s, level, 0.9, delta / 3, &power, NULL));
+    CHECK(power.n == 9);
+    CHECK_REL(power.bias_half, delta, 1e-6);
+    CHECK_REL(power.bias_most, delta, 1e-6);
+    CHECK_REL(power.samples_most, 9, 1e-5);
+    metrics_block_stats_free(&s);
+
+    /* A reference whose own noise per window exceeds the bias: no number
+     * of samples finds it. */
+    params.ref_rel_se = 0.01;
+    CHECK(metrics_block_stats_variance(&ref, &variance, 0, &ref, &params, &s, NULL));
+    CHECK(isinf(metrics_samples_for_bias(&s.windows[4], level, 0.9, 0.001)));
+    metrics_block_stats_free(&s);
+
+    /* A black reference tells no relative bias. */
+    struct image black = constant_image(64, 64, 0, 0, 0);
+    params.ref_rel_se = 0;
+    CHECK(metrics_block_stats_variance(&black, &variance, 0, &black, &params, &s, NULL));
+    CHECK(isnan(metrics_detectable_bias(&s.windows[4], level, 0.9)));
+    CHECK(metrics_block_power(&s, level, 0.9, 0.02, &power, NULL));
+    CHECK(power.n == 0 && isnan(power.bias_half));
+    metrics_block_stats_free(&s);
+    image_free(&black);
+    image_free(&ref);
+    image_free(&variance);
+}
+
+/* A standard normal deviate (Box-Muller). */
+static double
+normal_deviate(struct rng *r)
+{
+    double u = 1 - (double)rng_uniform(r), v = (double)rng_uniform(r);
+    return sqrt(-2 * log(u)) * cos(6.283185307179586 * v);
+}
+
+/* The claim checked by trial: renders of K = 4 seeds, their noise
+ * estimated from their spread as compare does (3 dof per pixel), a bias
+ * of metrics_detectable_bias's size planted over one window: that window's
+ * test finds it in about 9 trials of 10 (399 trials: 359 expected, SD 6;
+ * the bounds are 4.5 SD), and half that bias about 1 time in 7. */
+TEST(detectable_bias_is_found_nine_times_in_ten)
+{
+    enum {
+        K = 4,
+        N = 32,
+        TRIALS = 400
+    };
+    struct image ref = constant_image(N, N, 1, 1, 1);
+    struct image mean = constant_image(N, N, 0, 0, 0);
+    struct image variance = constant_image(N, N, 0, 0, 0);
+    struct metrics_block_params params = {.block_size = 16, .windows = true};
+    double level = stattest_sidak(0.01, 15), planted = 0;
+    int found[2] = {0, 0};
+    for (int trial = 0; trial < TRIALS; trial++) {
+        struct rng r = rng_make(99, (uint64_t)trial);
+        for (int half = 0; half < 2; half++) {
+            double bias = half ? planted / 2 : planted;
+            for (size_t j = 0; j < (size_t)N * N; j++) {
+                /* The channels share their noise, as a path's colours do. */
+                double sum = 0, sum2 = 0;
+                for (int k = 0; k < K; k++) {
+                    double x = (1 + bias) * (1 + 0.1 * normal_deviate(&r));
+                    sum += x;
+                    sum2 += x * x;
+                }
+                for (int c = 0; c < 3; c++) {
+                    mean.rgb[3 * j + (size_t)c] = (float)(sum / K);
+                    variance.rgb[3 * j + (size_t)c] = (float)((sum2 - sum * sum / K) / (K - 1) / K);
+                }
+            }
+            struct metrics_block_stats s;
+            CHECK(metrics_block_stats_variance(&mean, &variance, K - 1, &ref, &params, &s, NULL));
+            if (trial == 0 && half == 0) {
+                /* The size comes from the noise alone (no bias planted yet). */
+                planted = metrics_detectable_bias(&s.windows[0], level, 0.9);
+                CHECK(planted > 0 && planted < 0.05);
+            } else {
+                const struct metrics_block *w = &s.windows[0];
+                found[half] += w->p[0] < level || w->p[1] < level || w->p[2] < level;
+            }
+            metrics_block_stats_free(&s);
+        }
+    }
+    CHECK_MSG(found[0] >= 332 && found[0] <= 386, "found %d of %d", found[0], TRIALS - 1);
+    /* Half the bias is z_level - (z_level + z_0.9) / 2 = 1.06 standard
+     * errors short of the level: found with probability 0.145, 58 times. */
+    CHECK_MSG(found[1] >= 25 && found[1] <= 100, "half the bias found %d of %d", found[1], TRIALS);
+    image_free(&ref);
+    image_free(&mean);
+    image_free(&variance);
+}
+
 TEST_MAIN(
     TEST_ENTRY(identical_images_give_zero),
     TEST_ENTRY(constant_offset_known_values),
@@ -383,4 +500,6 @@ TEST_MAIN(
     TEST_ENTRY(smooth_mask_tolerance_and_black),
     TEST_ENTRY(block_stats_hand_computed),
     TEST_ENTRY(block_stats_detect_bias_only),
-    TEST_ENTRY(block_windows_find_what_their_blocks_share))
+    TEST_ENTRY(block_windows_find_what_their_blocks_share),
+    TEST_ENTRY(detectable_bias_hand_computed),
+    TEST_ENTRY(detectable_bias_is_found_nine_times_in_ten))

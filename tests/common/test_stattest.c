@@ -12,9 +12,6 @@
 
 #define PI_D 3.14159265358979323846
 
-/* |got - want| <= rel * |want|, for values spanning many magnitudes. */
-#define CHECK_REL(got, want, rel) CHECK_NEAR((got), (want), (rel)*fabs((double)(want)))
-
 TEST(welford_matches_two_pass)
 {
     static const double xs[] = {1e9 + 4, 1e9 + 7, 1e9 + 13, 1e9 + 16};
@@ -99,6 +96,28 @@ TEST(t_distribution_tables)
     /* Very many degrees of freedom: the normal distribution. */
     CHECK_NEAR(stattest_t_pvalue(1.959963984540054, INFINITY), 0.05, 1e-12);
     CHECK_NEAR(stattest_t_pvalue(1.959963984540054, 1e6), 0.05, 1e-6);
+}
+
+TEST(t_critical_inverts_the_p_value)
+{
+    /* The table quantiles above, read backwards. */
+    CHECK_NEAR(stattest_t_critical(0.05, 10), 2.228138852, 1e-8);
+    CHECK_NEAR(stattest_t_critical(0.01, 30), 2.749995652, 1e-8);
+    CHECK_NEAR(stattest_t_critical(0.05, INFINITY), 1.959963984540054, 1e-12);
+    /* One-sided: the normal's 90% quantile. */
+    CHECK_NEAR(stattest_t_critical(0.2, INFINITY), 1.2815515655446004, 1e-12);
+    /* dof 1 (Cauchy): p = 1 - (2/pi) atan t, so t = cot(pi p / 2), far out. */
+    CHECK_REL(stattest_t_critical(1e-7, 1), 1 / tan(PI_D * 1e-7 / 2), 1e-9);
+    /* Round trips at a compare-sized level. */
+    for (double dof = 1.5; dof < 1e5; dof *= 7) {
+        double t = stattest_t_critical(1.3e-6, dof);
+        CHECK_REL(stattest_t_pvalue(t, dof), 1.3e-6, 1e-9);
+    }
+    CHECK(stattest_t_critical(1, 5) < 1e-12);
+    CHECK(isnan(stattest_t_critical(0, 5)));
+    CHECK(isnan(stattest_t_critical(1.5, 5)));
+    CHECK(isnan(stattest_t_critical(0.05, 0)));
+    CHECK(isnan(stattest_t_critical(NAN, 5)));
 }
 
 TEST(chi_square)
@@ -209,6 +228,7 @@ TEST_MAIN(
     TEST_ENTRY(incbeta_closed_forms_and_tables),
     TEST_ENTRY(t_distribution_closed_forms),
     TEST_ENTRY(t_distribution_tables),
+    TEST_ENTRY(t_critical_inverts_the_p_value),
     TEST_ENTRY(chi_square),
     TEST_ENTRY(normal_distribution),
     TEST_ENTRY(sidak_correction),

@@ -66,6 +66,10 @@ browser_screenshot(
         "--disable-component-update",
         "--disable-sync",
         "--hide-scrollbars",
+        /* Let the page's tasks (decoding its data-URI images, its script)
+         * finish before the shot: on a busy machine it was once taken
+         * with an image not yet painted. */
+        "--virtual-time-budget=5000",
         profile,
         size,
         out_arg,

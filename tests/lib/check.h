@@ -64,6 +64,13 @@ static struct check_state check_current;
         } \
     } while (0)
 
+/* |a - b| <= rel |b|: a relative tolerance, each argument evaluated once. */
+#define CHECK_REL(a, b, rel) \
+    do { \
+        double check_b_rel_ = (double)(b); \
+        CHECK_NEAR((a), check_b_rel_, (rel) * fabs(check_b_rel_)); \
+    } while (0)
+
 #define SKIP(why) \
     do { \
         printf("%s:%d: skipped: %s\n", __FILE__, __LINE__, why); \

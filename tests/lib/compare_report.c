@@ -97,6 +97,18 @@ put_image(
     fputs("\">", f);
 }
 
+/* A note paragraph after the verdict's (which the caller closes): lead,
+ * then text as a sentence; nothing when text is empty. */
+static void
+put_note(FILE *f, const char *id, const char *lead, const char *text)
+{
+    if (text[0]) {
+        fprintf(f, "</p>\n<p class=\"note\" id=\"%s\">%s", id, lead);
+        put_escaped(f, text);
+        fputs(".", f);
+    }
+}
+
 /* The block test takes each block's mean as normal.  A few bright paths
  * (caustics, fireflies) that most renders miss make a block's mean skewed,
  * darker than the reference more often than the level says; a block's
@@ -148,6 +160,57 @@ compare_format_alarms(char *buf, size_t cap, const struct comparison *c)
         c->alpha,
         tests,
         measured_alarms);
+}
+
+void
+compare_format_power(char *buf, size_t cap, const struct comparison *c)
+{
+    const struct metrics_power *p = &c->power;
+    snprintf(buf, cap, "%s", "");
+    if (c->noise == NOISE_NONE || p->n == 0) {
+        return;
+    }
+    bool windows = c->blocks.n_windows > 0;
+    int side = windows ? 2 * c->block_size : c->block_size;
+    char half[64], most[64], target[64], times[64];
+    metrics_format_plain(half, sizeof half, 100 * p->bias_half);
+    metrics_format_plain(most, sizeof most, 100 * p->bias_most);
+    metrics_format_plain(target, sizeof target, 100 * COMPARE_TARGET_BIAS);
+    metrics_format_plain(times, sizeof times, p->samples_most);
+    const char *unit = windows ? "window" : "block";
+    char more[256];
+    if (p->samples_most <= 1) {
+        snprintf(more, sizeof more, "%s%% is found so in 9 %ss of 10 already", target, unit);
+    } else if (isinf(p->samples_most)) {
+        snprintf(
+            more,
+            sizeof more,
+            "%s%% in 9 %ss of 10 is hidden by the reference's own noise",
+            target,
+            unit);
+    } else {
+        snprintf(
+            more,
+            sizeof more,
+            "to find %s%% so in 9 %ss of 10: about %s times these renders' samples (--spp, or "
+            "more renders with other --seed values)",
+            target,
+            unit,
+            times);
+    }
+    snprintf(
+        buf,
+        cap,
+        "a bias that brightens or darkens a %dx%d %s by %s%% is found 9 times in 10 in half the "
+        "%ss, and one of %s%% in 9 %ss of 10; %s",
+        side,
+        side,
+        unit,
+        half,
+        unit,
+        most,
+        unit,
+        more);
 }
 
 void
@@ -300,13 +363,11 @@ write_page(FILE *f, const struct comparison *c, unsigned char *const png[3], con
                                                    : "biased";
     fprintf(f, "</h1>\n<p class=\"verdict %s\" id=\"verdict\">", cls);
     put_escaped(f, c->verdict);
-    char alarms[1024];
+    char alarms[1024], power[512];
     compare_format_alarms(alarms, sizeof alarms, c);
-    if (alarms[0]) {
-        fputs("</p>\n<p class=\"note\" id=\"alarms\">", f);
-        put_escaped(f, alarms);
-        fputs(".", f);
-    }
+    put_note(f, "alarms", "", alarms);
+    compare_format_power(power, sizeof power, c);
+    put_note(f, "power", "What it can find: ", power);
     fputs("</p>\n<div class=\"row\">\n<figure><figcaption>Render</figcaption>", f);
     put_image(f, png[0], n[0], NULL, NULL, "render");
     fputs("</figure>\n<figure><figcaption>Reference</figcaption>", f);

@@ -13,6 +13,13 @@
 #include "metrics.h"
 #include "regions.h"
 
+/* What compare says it can find: a bias found this often (9 times in 10)
+ * ... */
+#define COMPARE_POWER 0.9
+/* ... and the bias it says how many samples find: 2% over a window, the
+ * bias make calibrate plants (docs/calibration/README.md). */
+#define COMPARE_TARGET_BIAS 0.02
+
 /* Exit statuses: the images agree, the render is biased, bad input. */
 enum compare_status {
     COMPARE_AGREE = 0,
@@ -53,6 +60,7 @@ struct comparison {
     struct metrics m;
     struct metrics_block_stats blocks; /* n_blocks 0 when NOISE_NONE */
     double level; /* the Sidak-corrected level of one block or window test */
+    struct metrics_power power; /* what the tests can find (COMPARE_POWER, COMPARE_TARGET_BIAS) */
     int *failing; /* failing tests (metrics_block_test's index), most significant first */
     int n_failing;
     int n_failing_windows; /* of them, windows */
@@ -87,6 +95,12 @@ bool compare_bias_hint_applies(const struct comparison *c);
  * (docs/calibration/README.md), and what to do about a "biased" one doubts.
  * Empty when the comparison has no noise (no statistical test). */
 void compare_format_alarms(char *buf, size_t cap, const struct comparison *c);
+
+/* What the comparison can find (c->power): the bias over a window that
+ * its tests find 9 times in 10, for the median window and for 9 windows in
+ * 10, and how many times the renders' samples find COMPARE_TARGET_BIAS in 9
+ * windows of 10.  Empty when the comparison has no noise. */
+void compare_format_power(char *buf, size_t cap, const struct comparison *c);
 
 /* "render R G B, reference R G B": the means of both images, per channel. */
 void compare_format_means(char *buf, size_t cap, const struct metrics *m, const char *separator);

@@ -635,6 +635,99 @@ metrics_block_rejections(const struct metrics_block_stats *s, double alpha, doub
     return rejected;
 }
 
+/* ---- what the tests can find ------------------------------------------- */
+
+/* The shift, in standard errors, that a test at `level` finds with
+ * probability `power` (metrics.h): t_level + t_power at the test's dof. */
+static double
+findable_shift(double level, double power, double dof)
+{
+    return stattest_t_critical(level, dof) + stattest_t_critical(2 * (1 - power), dof);
+}
+
+double
+metrics_detectable_bias(const struct metrics_block *b, double level, double power)
+{
+    double best = NAN;
+    for (int c = 0; c < 3; c++) {
+        double se = sqrt(b->var_mean[c] + b->ref_se[c] * b->ref_se[c]);
+        double delta = findable_shift(level, power, b->dof[c]) * se / fabs(b->ref_mean[c]);
+        if (isfinite(delta) && !(delta >= best)) {
+            best = delta;
+        }
+    }
+    return best;
+}
+
+double
+metrics_samples_for_bias(const struct metrics_block *b, double level, double power, double bias)
+{
+    double best = NAN;
+    for (int c = 0; c < 3; c++) {
+        /* The variance that lets the bias show: (bias |ref| / shift)^2 =
+         * var_mean / factor + ref_se^2. */
+        double se_needed = bias * fabs(b->ref_mean[c]) / findable_shift(level, power, b->dof[c]);
+        double room = se_needed * se_needed - b->ref_se[c] * b->ref_se[c];
+        double factor = room > 0 ? b->var_mean[c] / room : INFINITY;
+        if (b->ref_mean[c] != 0 && !isnan(se_needed) && !(factor >= best)) {
+            best = factor;
+        }
+    }
+    return best;
+}
+
+static int
+by_value(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The q-quantile of the n sorted values v (the smallest value at least a
+ * fraction q of them do not exceed). */
+static double
+quantile_sorted(const double *v, int n, double q)
+{
+    int i = (int)ceil(q * n) - 1;
+    return v[i < 0 ? 0 : i];
+}
+
+bool
+metrics_block_power(
+    const struct metrics_block_stats *s,
+    double level,
+    double power,
+    double target,
+    struct metrics_power *out,
+    struct diag *err)
+{
+    *out = (struct metrics_power){0, NAN, NAN, NAN};
+    const struct metrics_block *tests = s->n_windows > 0 ? s->windows : s->blocks;
+    int n = s->n_windows > 0 ? s->n_windows : s->n_blocks;
+    double *bias = malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *bias);
+    if (!bias) {
+        diag_set(err, NULL, 0, 0, "out of memory");
+        return false;
+    }
+    double *samples = bias + (n > 0 ? n : 1);
+    for (int i = 0; i < n; i++) {
+        double d = metrics_detectable_bias(&tests[i], level, power);
+        if (!isnan(d)) {
+            samples[out->n] = metrics_samples_for_bias(&tests[i], level, power, target);
+            bias[out->n++] = d;
+        }
+    }
+    if (out->n > 0) {
+        qsort(bias, (size_t)out->n, sizeof *bias, by_value);
+        qsort(samples, (size_t)out->n, sizeof *samples, by_value);
+        out->bias_half = quantile_sorted(bias, out->n, 0.5);
+        out->bias_most = quantile_sorted(bias, out->n, 0.9);
+        out->samples_most = quantile_sorted(samples, out->n, 0.9);
+    }
+    free(bias);
+    return true;
+}
+
 void
 metrics_format_plain(char *buf, size_t cap, double v)
 {

@@ -197,6 +197,48 @@ bool metrics_block_stats_variance(
     struct metrics_block_stats *out,
     struct diag *err);
 
+/* ---- What the block tests can find -------------------------------------
+ *
+ * A test finds a shift of d standard errors with probability `power` when
+ * d = t_level + t_power (the shifted-t approximation of its power: the
+ * test's t is the shift plus a t-distributed error; t_level is the test's
+ * two-sided critical value, t_power the error's one-sided power quantile).
+ * A bias here scales every channel of a block by 1 + delta, as a wrong
+ * factor in an estimator does; the block's most sensitive channel finds it
+ * first.  A channel whose reference mean is 0 sees no relative bias.
+ */
+
+/* The smallest delta that the tests of b, each at the per-test level
+ * `level`, find with probability `power` in its most sensitive channel.
+ * NaN when no channel can tell (a zero or non-finite reference). */
+double metrics_detectable_bias(const struct metrics_block *b, double level, double power);
+
+/* How many times the render's samples b needs for its tests to find a
+ * bias of `bias` (a fraction) with probability `power`: the render's
+ * variance falls with the samples, the reference's does not, so INFINITY
+ * when the reference's own noise alone hides the bias.  Below 1 when b
+ * already finds it; NaN as for metrics_detectable_bias. */
+double metrics_samples_for_bias(const struct metrics_block *b, double level, double power, double bias);
+
+/* What a comparison can find, over its windows of 2x2 blocks (its blocks
+ * when it has no windows), each tested at `level`: */
+struct metrics_power {
+    int n; /* windows (or blocks) that can tell a relative bias */
+    double bias_half; /* the detectable bias of the median window */
+    double bias_most; /* ... that 9 windows in 10 reach */
+    double samples_most; /* samples_for_bias(target) that 9 windows in 10 need */
+};
+
+/* Fill out for target bias `target` (e.g. 0.02).  Fails (diag) only when
+ * memory runs out; n 0 (and NaN figures) when no window can tell. */
+bool metrics_block_power(
+    const struct metrics_block_stats *s,
+    double level,
+    double power,
+    double target,
+    struct metrics_power *out,
+    struct diag *err);
+
 /* v as a reader writes it, never with an exponent: at least two
  * significant digits, and every digit before the point ("1400", "16",
  * "2.5", "0.0031"), into buf.  For percentages and standard errors, where

@@ -22,6 +22,7 @@
  */
 #include "stattest.h"
 
+#include <float.h>
 #include <math.h>
 
 /* Iteration cap of the series and continued fractions.  They need
@@ -263,6 +264,30 @@ stattest_t_pvalue(double t, double dof)
         return stattest_normal_pvalue(t);
     }
     return t_two_sided(t, dof);
+}
+
+double
+stattest_t_critical(double p, double dof)
+{
+    if (!(p > 0 && p <= 1) || !(dof > 0)) {
+        return NAN;
+    }
+    /* The p-value falls as |t| grows: bracket p between lo and hi = 2 lo,
+     * then bisect until the bracket is a few ulps of t wide. */
+    double lo = 0, hi = 1;
+    while (stattest_t_pvalue(hi, dof) > p && hi < 1e300) {
+        lo = hi;
+        hi *= 2;
+    }
+    for (int i = 0; i < 200 && hi - lo > 4 * DBL_EPSILON * hi; i++) {
+        double mid = 0.5 * (lo + hi);
+        if (stattest_t_pvalue(mid, dof) > p) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    return 0.5 * (lo + hi);
 }
 
 double

@@ -56,6 +56,11 @@ double stattest_t_cdf(double t, double dof);
 /* P(|T| >= |t|): the two-sided p-value of a t statistic. */
 double stattest_t_pvalue(double t, double dof);
 
+/* The critical value of a two-sided t-test: the t >= 0 with
+ * stattest_t_pvalue(t, dof) = p, for 0 < p <= 1 (NaN otherwise).  Also a
+ * one-sided quantile: P(T >= t) = p / 2. */
+double stattest_t_critical(double p, double dof);
+
 /* Chi-square distribution with k > 0 degrees of freedom: P(X <= x) and the
  * upper tail P(X > x), the p-value of a chi-square statistic. */
 double stattest_chi2_cdf(double x, double k);

@@ -475,6 +475,10 @@ test_blocks(struct comparison *c, int other_tests, struct diag *err)
     }
     int n = c->blocks.n_blocks + c->blocks.n_windows;
     c->level = stattest_sidak(c->alpha, 3.0 * n + other_tests);
+    if (!metrics_block_power(
+            &c->blocks, c->level, COMPARE_POWER, COMPARE_TARGET_BIAS, &c->power, err)) {
+        return false;
+    }
     c->failing = malloc((size_t)n * sizeof *c->failing);
     if (!c->failing) {
         diag_set(err, NULL, 0, 0, "out of memory");
@@ -680,6 +684,11 @@ print_text(const struct comparison *c)
     compare_format_alarms(alarms, sizeof alarms, c);
     if (alarms[0]) {
         print_wrapped("alarms     ", alarms);
+    }
+    char power[512];
+    compare_format_power(power, sizeof power, c);
+    if (power[0]) {
+        print_wrapped("power      ", power);
     }
 }
 
