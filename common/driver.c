@@ -102,8 +102,7 @@ pixel_estimate(const struct render_job *job, int x, int y, int pass, struct stat
 {
     uint64_t index = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
     struct rng rng = rng_for_pixel(job->seed, index, (uint64_t)pass);
-    return job->pass_pixel ? job->pass_pixel(job->ctx, x, y, pass, &rng, st)
-                           : job->pixel(job->ctx, x, y, &rng, st);
+    return job->pixel(job->ctx, x, y, &rng, st);
 }
 
 static void

@@ -25,12 +25,6 @@
 /* Radiance estimate for pixel (px, py) (0,0 top-left) in one pass. */
 typedef vec3 (*pixel_fn)(const void *ctx, int px, int py, struct rng *rng, struct stats *st);
 
-/* The same for a stage that samples progressively, told which pass (0, 1,
- * ...) it is in, so the samples of different passes can go to different
- * places in the pixel. */
-typedef vec3 (
-    *pass_pixel_fn)(const void *ctx, int px, int py, int pass, struct rng *rng, struct stats *st);
-
 struct render_job {
     int width, height;
     int threads; /* >= 1 */
@@ -38,8 +32,7 @@ struct render_job {
     double time_limit; /* seconds; stop starting passes after this (0: none) */
     uint64_t seed;
     bool progress; /* draw a progress bar on stderr */
-    pixel_fn pixel; /* exactly one of pixel and pass_pixel is set */
-    pass_pixel_fn pass_pixel;
+    pixel_fn pixel;
     const void *ctx;
 };
 

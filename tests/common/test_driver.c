@@ -1,9 +1,9 @@
 /*
  * test_driver.c - the tile renderer: every pixel computed once per pass,
  * images independent of the thread count, passes averaged, NaN pixels
- * counted and guarded, statistics summed over threads, a progressive
- * pixel function told its pass; shares of the tiles (render_share, the
- * browser build's workers) that add up to the whole image bit for bit.
+ * counted and guarded, statistics summed over threads; shares of the
+ * tiles (render_share, the browser build's workers) that add up to the
+ * whole image bit for bit.
  */
 #include <string.h>
 
@@ -27,18 +27,6 @@ nan_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
     (void)st;
     real zero = 0;
     return (px == 3 && py == 5) ? (vec3){zero / zero, 1, 1} : (vec3){1, 1, 1};
-}
-
-/* The pass number itself, so the image is the mean of 0 .. passes-1. */
-static vec3
-pass_number_pixel(const void *ctx, int px, int py, int pass, struct rng *rng, struct stats *st)
-{
-    (void)ctx;
-    (void)px;
-    (void)py;
-    (void)rng;
-    st->rays_camera++;
-    return vec3_splat((real)pass);
 }
 
 static struct render_job
@@ -105,19 +93,6 @@ TEST(seed_changes_the_image)
     image_free(&b);
 }
 
-TEST(progressive_pixel_is_told_its_pass)
-{
-    struct image img = {0};
-    struct render_result r;
-    struct diag err;
-    struct render_job j = job_for(NULL, 2, 5);
-    j.pass_pixel = pass_number_pixel;
-    CHECK(render_image(&j, &img, &r, &err));
-    CHECK(r.passes_done == 5 && r.counts.rays_camera == 5 * 37 * 21);
-    CHECK(image_pixel(&img, 0, 0)[0] == 2 && image_pixel(&img, 36, 20)[2] == 2); /* (0+..+4)/5 */
-    image_free(&img);
-}
-
 /* What on_pass saw: how often it was called and the last pass count. */
 struct pass_log {
     int calls, last;
@@ -173,5 +148,4 @@ TEST_MAIN(
     TEST_ENTRY(every_pixel_once_and_thread_independent),
     TEST_ENTRY(nan_pixels_are_counted_and_zeroed),
     TEST_ENTRY(seed_changes_the_image),
-    TEST_ENTRY(progressive_pixel_is_told_its_pass),
     TEST_ENTRY(shares_add_up_to_the_image))

@@ -218,7 +218,8 @@ double metrics_detectable_bias(const struct metrics_block *b, double level, doub
  * variance falls with the samples, the reference's does not, so INFINITY
  * when the reference's own noise alone hides the bias.  Below 1 when b
  * already finds it; NaN as for metrics_detectable_bias. */
-double metrics_samples_for_bias(const struct metrics_block *b, double level, double power, double bias);
+double
+metrics_samples_for_bias(const struct metrics_block *b, double level, double power, double bias);
 
 /* What a comparison can find, over its windows of 2x2 blocks (its blocks
  * when it has no windows), each tested at `level`: */
