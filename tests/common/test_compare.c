@@ -452,6 +452,11 @@ TEST(power_line_says_what_a_comparison_can_find)
             CHECK_REL(t, times / 4, 0.06);
         }
     }
+    /* -q: the verdict, then the same line unwrapped. */
+    const char *const quiet[] = {"-q", TMP("a.pfm"), "--variance", TMP("var.pfm"), TMP("ref.pfm"), NULL};
+    CHECK(compare(quiet, out) == 0);
+    const char *second = strchr(out, '\n');
+    CHECK_MSG(second && strncmp(second + 1, "power: ", 7) == 0 && strstr(second + 1, line), "%s", out);
     /* With no noise estimate there is no test, and no power line. */
     const char *const alone[] = {TMP("a.pfm"), TMP("ref.pfm"), NULL};
     CHECK(compare(alone, out) == 0 && !strstr(out, "power "));

@@ -9,7 +9,8 @@
 # reference's size, runs build/tools/compare with --html, and writes
 # OUT/NAME.html (the render, the reference, the error map, the numbers and
 # the verdict; how to read it: the handout's LAB.md, "Reading the report
-# pages").  Prints one line per page: its verdict and path.  --spp N: the
+# pages").  Prints for each page its verdict, what its tests can find
+# (compare's power line, pages with block tests), its regions and its path.  --spp N: the
 # samples per pixel of each render of the noise-tested pages (default
 # lablib.sh's GRADE_DEFAULT_SPP; make grade LAB=dir SPP=N).
 #

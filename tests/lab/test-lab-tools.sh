@@ -555,7 +555,8 @@ test_branches() {
 # grade-pages.sh on the project's own build (make test builds it first):
 # a page per reference render of labs 03 (one render, relMSE limit) and 06
 # (two renders, block tests, of the samples --spp asks for, as its header
-# line says), each one file with its images embedded.
+# line says, and what they can find: compare's power line), each one file
+# with its images embedded.
 test_grade_pages() {
     root=$(cd "$LAB_DIR/../.." && pwd)
     expect_exit grade-pages/spp-must-be-positive 2 "spp needs a positive number, got '0'" \
@@ -582,7 +583,9 @@ test_grade_pages() {
         if [ "$gp_pages" -eq "$gp_want" ] && [ "$gp_images" -eq $((5 * gp_want)) ] &&
             [ "$(grep -c "$gp_verdict" "$T/out")" -eq "$gp_want" ] &&
             grep -q "feature pass tests/reference/" "$T/out" &&
-            { [ "$gp_stage" != 06_supersample ] || grep -q "two renders of 16 spp" "$T/out"; } &&
+            { [ "$gp_stage" != 06_supersample ] ||
+                { grep -q "two renders of 16 spp" "$T/out" &&
+                    grep -q "^        power: a bias that brightens or darkens a 32x32 window by" "$T/out"; }; } &&
             ! grep -q -e "$root/tests/reference" -e "grade-pages\." "$T/out"; then
             ok "grade-pages/$gp_stage"
         else

@@ -95,7 +95,8 @@ usage(FILE *f)
         "                      Sidak-corrected family with the rest), or, with one\n"
         "                      render alone, held against --max-relmse; a line per\n"
         "                      region, with a pixel of it to replay with --pixel\n"
-        "  -q, --quiet         print only the verdict (and the regions' lines)\n"
+        "  -q, --quiet         print only the verdict, what it can find (the power\n"
+        "                      line) and the regions' lines\n"
         "  -h, --help          this text\n"
         "\n"
         "Exit status: 0 the images agree (or, one render alone, were compared),\n"
@@ -910,7 +911,9 @@ main(int argc, char **argv)
         return COMPARE_BAD_INPUT;
     }
     if (a.quiet) {
-        printf("%s\n", a.c.verdict);
+        char power[512];
+        compare_format_power(power, sizeof power, &a.c);
+        printf("%s\n%s%s%s", a.c.verdict, power[0] ? "power: " : "", power, power[0] ? "\n" : "");
     } else {
         print_text(&a.c);
     }
