@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "estimate.h"
 #include "stagecheck.h"
 #include "stats.h"
 #include "stattest.h"
@@ -305,10 +306,29 @@ pathcheck_reference_test(
         .ref_se = se,
         .ref_dof = ref->dof,
     };
+    /* The per-pixel variances of the renders' mean, each block's at least
+     * its neighbourhood's, as compare tests them: where light comes by rare
+     * paths (a sliver of penumbra lit only by BSDF samples that hit the
+     * lamp), all k renders can miss a block's paths at once, and the
+     * spread of their block means is then 0 (calibrated:
+     * docs/calibration/README.md). */
     struct metrics_block_stats s;
-    struct diag err;
-    bool ok = metrics_block_stats(renders, k, r, &params, &s, &err);
+    struct diag err = {0};
+    struct image mean = {0}, variance = {0};
+    double *weights = malloc((size_t)k * sizeof *weights);
+    bool ok = weights != NULL;
+    if (!ok) {
+        diag_set(&err, NULL, 0, 0, "out of memory");
+    }
+    for (int i = 0; ok && i < k; i++) {
+        weights[i] = 1;
+    }
+    ok = ok && estimate_combine(renders, weights, k, &mean, &variance, &err)
+         && metrics_block_stats_variance(&mean, &variance, k - 1, r, &params, &s, &err);
+    free(weights);
     free(se);
+    image_free(&mean);
+    image_free(&variance);
     if (!ok) {
         diag_print(stdout, &err, "error");
         return false;

@@ -129,8 +129,11 @@ struct pathcheck_reference {
 bool pathcheck_reference_load(const char *name, int factor, struct pathcheck_reference *out);
 void pathcheck_reference_free(struct pathcheck_reference *ref);
 
-/* Block t-tests (metrics.h) of k renders against the reference, each
- * block and channel counted in *t at `level`.  The reference's standard
+/* Block t-tests (metrics.h) of k >= 2 renders against the reference, as
+ * compare makes them: their mean and the per-pixel variance of that mean
+ * (estimate.h, k - 1 degrees of freedom per pixel), each block's variance
+ * at least its neighbourhood's (metrics_block_stats_variance); each block
+ * and channel counted in *t at `level`.  The reference's standard
  * error of a block mean is taken as rel_se_pixel * |block mean| /
  * sqrt(reference pixels in the block): its pixels' noise is independent
  * (Mitsuba's independent sampler), and the 90th percentile of the per-pixel

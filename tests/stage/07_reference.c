@@ -12,11 +12,14 @@
  *    averages the radiance over the four pixels' footprints.  A quarter of
  *    the pixels gives 4x the samples per pixel for the same time.
  *  - K = BATCHES independent renders (seeds differ) of SPP samples each.
- *    Their spread estimates the noise; no variance formula is trusted.
+ *    Their spread estimates the noise of each pixel; no variance formula
+ *    is trusted.
  *  - Block t-tests: the image cut into 16x16 blocks (64 blocks), plus one
  *    test of the whole image's mean; per block and channel Welch's t-test
- *    of the K batch means against the reference's block mean, whose own
- *    standard error comes from META.json (pathcheck_reference_test).  Every
+ *    of the renders' mean against the reference's block mean, whose own
+ *    standard error comes from META.json, as compare tests it (the
+ *    pixels' variances summed, a block's at least its neighbourhood's:
+ *    pathcheck_reference_test).  Every
  *    block of every scene shares alpha = 0.01, Sidak-corrected for the
  *    N_STAT_TESTS tests of the program.
  *  - relMSE against the reference at SPP (each batch) and at 4 * SPP
