@@ -288,6 +288,14 @@ TEST(renders_are_combined_weighted_by_their_samples)
     }
     image_free(&mean);
     image_free(&var);
+    /* No weights: equal ones, the mean 2 + c and (1 + 1) / ((2 - 1) 2). */
+    CHECK(estimate_combine(in, NULL, 2, &mean, &var, &err));
+    for (int c = 0; mean.rgb && c < 3; c++) {
+        CHECK_NEAR(mean.rgb[c], 2 + c, 1e-6);
+        CHECK_NEAR(var.rgb[c], 1, 1e-6);
+    }
+    image_free(&mean);
+    image_free(&var);
     const double bad[2] = {1, 0};
     CHECK(!estimate_combine(in, bad, 2, &mean, NULL, &err));
     image_free(&in[0]);

@@ -6,6 +6,13 @@
 #include <math.h>
 #include <stddef.h>
 
+/* Image j's weight: weights[j], or 1 when there are none (equal weights). */
+static double
+weight_of(const double *weights, int j)
+{
+    return weights ? weights[j] : 1;
+}
+
 static bool
 check_inputs(const struct image *images, const double *weights, int k, struct diag *err)
 {
@@ -14,7 +21,8 @@ check_inputs(const struct image *images, const double *weights, int k, struct di
         return false;
     }
     for (int j = 0; j < k; j++) {
-        if (!(weights[j] > 0) || !isfinite(weights[j])) {
+        double w = weight_of(weights, j);
+        if (!(w > 0) || !isfinite(w)) {
             diag_set(
                 err,
                 NULL,
@@ -22,7 +30,7 @@ check_inputs(const struct image *images, const double *weights, int k, struct di
                 0,
                 "image %d: weight (samples per pixel) %g is not positive",
                 j + 1,
-                weights[j]);
+                w);
             return false;
         }
         if (images[j].width != images[0].width || images[j].height != images[0].height) {
@@ -65,13 +73,13 @@ estimate_combine(
     }
     double total = 0;
     for (int j = 0; j < k; j++) {
-        total += weights[j];
+        total += weight_of(weights, j);
     }
     size_t n = (size_t)mean->width * (size_t)mean->height * 3;
     for (size_t i = 0; i < n; i++) {
         double m = 0;
         for (int j = 0; j < k; j++) {
-            m += weights[j] * images[j].rgb[i];
+            m += weight_of(weights, j) * images[j].rgb[i];
         }
         m /= total;
         mean->rgb[i] = (float)m;
@@ -79,7 +87,7 @@ estimate_combine(
             double ss = 0;
             for (int j = 0; j < k; j++) {
                 double d = images[j].rgb[i] - m;
-                ss += weights[j] * d * d;
+                ss += weight_of(weights, j) * d * d;
             }
             variance->rgb[i] = (float)(ss / ((k - 1) * total));
         }

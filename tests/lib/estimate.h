@@ -22,7 +22,7 @@
 #include "image.h"
 
 /* Combine k >= 1 images of one size with positive weights (their samples
- * per pixel) into mean (allocated here) and, when variance is not NULL and
+ * per pixel; NULL: all equal) into mean (allocated here) and, when variance is not NULL and
  * k >= 2, the per-pixel variance of that mean (allocated here).  Fails
  * (diag) on mismatched sizes, bad weights or no memory. */
 bool estimate_combine(

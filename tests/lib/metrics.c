@@ -704,12 +704,13 @@ metrics_block_power(
     *out = (struct metrics_power){0, NAN, NAN, NAN};
     const struct metrics_block *tests = s->n_windows > 0 ? s->windows : s->blocks;
     int n = s->n_windows > 0 ? s->n_windows : s->n_blocks;
-    double *bias = malloc((size_t)(n > 0 ? n : 1) * 2 * sizeof *bias);
+    size_t cap = n > 0 ? (size_t)n : 1;
+    double *bias = malloc(2 * cap * sizeof *bias);
     if (!bias) {
         diag_set(err, NULL, 0, 0, "out of memory");
         return false;
     }
-    double *samples = bias + (n > 0 ? n : 1);
+    double *samples = bias + cap;
     for (int i = 0; i < n; i++) {
         double d = metrics_detectable_bias(&tests[i], level, power);
         if (!isnan(d)) {

@@ -315,17 +315,8 @@ pathcheck_reference_test(
     struct metrics_block_stats s;
     struct diag err = {0};
     struct image mean = {0}, variance = {0};
-    double *weights = malloc((size_t)k * sizeof *weights);
-    bool ok = weights != NULL;
-    if (!ok) {
-        diag_set(&err, NULL, 0, 0, "out of memory");
-    }
-    for (int i = 0; ok && i < k; i++) {
-        weights[i] = 1;
-    }
-    ok = ok && estimate_combine(renders, weights, k, &mean, &variance, &err)
-         && metrics_block_stats_variance(&mean, &variance, k - 1, r, &params, &s, &err);
-    free(weights);
+    bool ok = estimate_combine(renders, NULL, k, &mean, &variance, &err)
+              && metrics_block_stats_variance(&mean, &variance, k - 1, r, &params, &s, &err);
     free(se);
     image_free(&mean);
     image_free(&variance);

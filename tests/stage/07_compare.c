@@ -206,13 +206,12 @@ most_precise_block(
     double *bias)
 {
     const struct image pair[2] = {*a, *b};
-    const double weights[2] = {1, 1};
     struct image mean = {0}, variance = {0};
     struct diag err = {0};
     /* compare's family: the blocks and the windows of 2x2 blocks. */
     struct metrics_block_params params = {.block_size = BLOCK, .windows = true};
     int best = -1;
-    if (estimate_combine(pair, weights, 2, &mean, &variance, &err)
+    if (estimate_combine(pair, NULL, 2, &mean, &variance, &err)
         && metrics_block_stats_variance(&mean, &variance, 1, ref, &params, s, &err)) {
         double best_p = INFINITY, best_t = 0;
         for (int i = 0; i < s->n_blocks; i++) {

@@ -320,11 +320,9 @@ static bool
 load_inputs(struct comparison *c, struct diag *err)
 {
     struct image renders[MAX_RENDERS] = {{0}};
-    double weights[MAX_RENDERS];
     bool ok = imgread(c->reference_path, &c->reference, err)
               && check_finite(&c->reference, c->reference_path, err);
     for (int j = 0; ok && j < c->k; j++) {
-        weights[j] = 1;
         ok = imgread(c->render_paths[j], &renders[j], err)
              && check_finite(&renders[j], c->render_paths[j], err);
         if (ok
@@ -347,7 +345,7 @@ load_inputs(struct comparison *c, struct diag *err)
     ok = ok
          && estimate_combine(
              renders,
-             weights,
+             NULL,
              c->k,
              &c->render,
              c->k >= 2 ? &c->variance : NULL,
