@@ -209,7 +209,7 @@ help:
 	'make test-seeds       the statistical stage tests under SEEDS (20) other seeds: failure rates' \
 	'make docs-images      the lessons'"'"' pictures (docs/images/)' \
 	'make lab STAGE=NN OUT=dir   a lab handout (SOLUTION=1 the instructor'"'"'s; FORCE=1 moves a changed one aside)' \
-	'make grade LAB=dir    build a handout, run its tests, score them (SPP=N: the report pages'"'"' samples)' \
+	'make grade LAB=dir    build a handout, run its tests, score them (SPP=N or auto: the report pages'"'"' samples)' \
 	'make autograder STAGE=NN OUT=dir   the Gradescope autograder of a lab (OUT/autograder.zip)' \
 	'make grade-class SUBMISSIONS=dir   grade every submission: a CSV and an HTML summary (SCHEDULER=slurm: a job array)' \
 	'make farm-render SCENE=f SPP=N TASKS=N   one render split over N Slurm tasks by seed, merged' \

@@ -162,18 +162,6 @@ choose_spp(struct renderer *renderer, const struct options *opt, struct diag *er
     return true;
 }
 
-/* Samples per pixel in one pass: the largest divisor of spp up to 16, so
- * a pass is short (a Ctrl-C loses little) yet stratified. */
-static int
-samples_per_pass(int spp)
-{
-    int per_pass = spp < 16 ? spp : 16;
-    while (spp % per_pass != 0) {
-        per_pass--;
-    }
-    return per_pass;
-}
-
 /* What the render passes (--aov, aov.h) ask of the stage: the ray through
  * a point of the film, and the first surface along a ray. */
 static ray
@@ -202,13 +190,9 @@ render(struct renderer *renderer, struct run *run)
 {
     struct render_job job = run_job(run, renderer);
     job.pixel = render_pixel;
-    /* Progressive: the image is the mean of passes of a few samples per
-     * pixel, each pass a pattern of its own, so it can be stopped (Ctrl-C,
-     * --time) after any pass. */
-    int per_pass = samples_per_pass(renderer->spp);
-    job.passes = renderer->spp / per_pass;
-    job.time_limit = renderer->time_limit;
-    renderer->spp = per_pass;
+    /* Progressive (run.h): passes of a few samples, so that --time or a
+     * Ctrl-C can stop it after any pass; renderer->spp becomes a pass's. */
+    renderer->spp = run_progressive(&job, renderer->spp, renderer->time_limit);
     renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
     run->rep.extra_names[STAT_PENUMBRA] = "penumbra_pixels";
     run->rep.extra_names[STAT_AA_REFINED] = "aa_refined_pixels";

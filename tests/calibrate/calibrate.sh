@@ -19,6 +19,12 @@
 #                 "biased" when any page is
 #   control       check-planted's control: regions, and when it flags a
 #                 region, again with 4x the spp (two fresh renders)
+#   grade-auto    a page of make grade SPP=auto: the set's two renders are
+#                 its pilot, whose power line sets the spp (spp_for_power)
+#                 of two fresh renders, judged as grade-page; with a 2%
+#                 bias planted as below too (not in the default list: a set
+#                 costs some 36 times the others on the point-lit and
+#                 specular boxes)
 # A verdict is "biased" when compare exits 1.  The same pool, with a bias
 # planted into the renders' images (imgedit --scale: 1%, 2% and 5% in a
 # 32x32 rectangle at a random place, 0.5% over the whole image), measures
@@ -45,7 +51,8 @@
 #   --sets N          independent sets per verdict (default 200)
 #   --bug-sets N      pairs per planted code bug and scene (default 20)
 #   --scenes LIST     comma-separated reference scenes (default: all)
-#   --verdicts LIST   comma-separated (default: all of those above)
+#   --verdicts LIST   comma-separated (default: all of those above but
+#                     grade-auto)
 #   --seed-offsets N  run the statistical stage tests N times (default 0)
 #   --out DIR         where the table and plot go (default docs/calibration)
 #   --threads N       render threads (default 2)
@@ -146,20 +153,24 @@ make_refs() {
     mkdir -p "$pool/refs"
     factor=$((256 / size))
     meta=$pool/refs/META.json
+    if [ "$size" -eq 256 ]; then
+        # The references themselves (also for runs of other scenes beside this one).
+        for scene in $scenes; do
+            cp "$refs/${scene}_gi.pfm" "$(ref_of "$scene").tmp" && mv "$(ref_of "$scene").tmp" "$(ref_of "$scene")"
+            cp "$refs/$scene.feature.pfm" "$(mask_of "$scene").tmp" && mv "$(mask_of "$scene").tmp" "$(mask_of "$scene")"
+        done
+        cp "$refs/META.json" "$meta.$$" && mv "$meta.$$" "$meta"
+        return 0
+    fi
     echo '{ "images": {' >"$meta.tmp"
     sep=
     for scene in $scenes; do
-        if [ "$size" -eq 256 ]; then
-            cp "$refs/${scene}_gi.pfm" "$(ref_of "$scene")"
-            cp "$refs/$scene.feature.pfm" "$(mask_of "$scene")"
-        else
-            "$imgedit" --downsample "$factor" "$refs/${scene}_gi.pfm" "$(ref_of "$scene")" ||
-                die "cannot downsample $scene's reference"
-            "$render" -q -s 1 -t "$threads" -W "$size" -H "$size" --aov feature \
-                -o "$work/mask.pfm" "$root/scenes/$scene.scene" >/dev/null ||
-                die "stage 07 cannot render $scene's feature pass"
-            mv "$work/mask.feature.pfm" "$(mask_of "$scene")"
-        fi
+        "$imgedit" --downsample "$factor" "$refs/${scene}_gi.pfm" "$(ref_of "$scene")" ||
+            die "cannot downsample $scene's reference"
+        "$render" -q -s 1 -t "$threads" -W "$size" -H "$size" --aov feature \
+            -o "$work/mask.pfm" "$root/scenes/$scene.scene" >/dev/null ||
+            die "stage 07 cannot render $scene's feature pass"
+        mv "$work/mask.feature.pfm" "$(mask_of "$scene")"
         # The reference's noise per pixel falls with the pixels averaged.
         rel=$(awk -v s="\"${scene}_gi\"" -v f="$factor" '
             index($0, s) { on = 1 }
@@ -273,11 +284,15 @@ for scene in $scenes; do
     pool_renders "$render" "$dir" "$scene" "$spp" "$BASE" "$need"
     sec=$(seconds_per_render "$dir")
     echo "  $scene: $need renders ready ($(($(date +%s) - start)) s now; $sec processor s each)"
-    for v in compare-2 regions grade-page control; do
+    for v in compare-2 regions grade-page control grade-auto; do
         has_verdict "$v" || continue
         : >"$work/$v"
     done
     : >"$work/compare-4"
+    : >"$work/ga.region2"
+    : >"$work/ga.spp"
+    : >"$work/ga.seconds"
+    auto_renders=0
     for b in region1 region2 region5 whole0.5; do
         : >"$work/c2.$b"
         : >"$work/gp.$b"
@@ -313,6 +328,23 @@ for scene in $scenes; do
                 "$dir/$((BASE + 4 * i + 2)).pfm" "$dir/$((BASE + 4 * i + 3)).pfm" "$ref"
         fi
         rect=$(plant_rect "$i")
+        if has_verdict grade-auto; then
+            # The pilot is the set's pair; the spp it asks for, a pair of its own.
+            "$compare" -q --alpha "$page_alpha" "$r1" "$r2" "$ref" >"$work/pilot" 2>&1 || [ $? -eq 1 ] ||
+                die "compare failed on a pilot: $(cat "$work/pilot")"
+            spp_for_power "$work/pilot" "$spp" "$GRADE_MAX_SPP" || die "no power line: $(cat "$work/pilot")"
+            for j in 1 2; do
+                a=$dir/auto/$sfp_spp/$((3 * BASE + 2 * i + j)).pfm
+                [ -f "$a" ] || { mkdir -p "$dir/auto/$sfp_spp"; render_one "$render" "$scene" "$sfp_spp" $((3 * BASE + 2 * i + j)) "$a"; }
+                eval "a$j=\$a"
+                seconds_per_render "$dir/auto/$sfp_spp" >>"$work/ga.seconds"
+            done
+            auto_renders=$((auto_renders + 2))
+            echo "$sfp_spp" >>"$work/ga.spp"
+            judge "$work/grade-auto" --alpha "$page_alpha" --regions "$mask" "$a1" "$a2" "$ref"
+            planted "$i" 1.02 "$rect" "$a1" "$a2"
+            judge "$work/ga.region2" --alpha "$page_alpha" --regions "$mask" "$work/p.1.pfm" "$work/p.2.pfm" "$ref"
+        fi
         for b in region1 region2 region5 whole0.5; do
             case $b in
                 region1) planted "$i" 1.01 "$rect" "$r1" "$r2" ;;
@@ -337,6 +369,13 @@ for scene in $scenes; do
         [ ! -f "$dir/ctl/seconds" ] || ctl_sec=$(awk -v n="$ctl_renders" '{ s += $1; k++ } END { print k ? s / k * n : 0 }' "$dir/ctl/seconds")
         tally control "$scene" none 0 "$sets" "$(count1 "$work/control")" $((2 * sets + ctl_renders)) \
             "$(awk -v n="$sets" -v p="$pair" -v x="$ctl_sec" 'BEGIN { print n * p + x }')"
+    fi
+    if has_verdict grade-auto; then
+        # Processor seconds: the pilots' and the renders the pilots asked for.
+        ga_sec=$(awk -v p="$pair" -v s="$sets" '{ t += $1 } END { print s * p + t }' "$work/ga.seconds")
+        echo "  $scene: grade-auto's spp: $(sort -n "$work/ga.spp" | awk '{ v[++n] = $1 } END { print "min " v[1] ", median " v[int((n + 1) / 2)] ", max " v[n] }')"
+        tally grade-auto "$scene" none 0 "$sets" "$(count1 "$work/grade-auto")" $((2 * sets + auto_renders)) "$ga_sec"
+        tally grade-auto "$scene" region2 2 "$sets" "$(count1 "$work/ga.region2")" $((2 * sets + auto_renders)) "$ga_sec"
     fi
     ! has_verdict compare-4 || tally compare-4 "$scene" none 0 "$sets" "$(count1 "$work/compare-4")" \
         $((4 * sets)) "$(awk -v n="$sets" -v p="$pair" 'BEGIN { print 2 * n * p }')"
@@ -400,7 +439,7 @@ fi
 cp "$csv" "$out/calibration.csv.tmp"
 mv "$out/calibration.csv.tmp" "$out/calibration.csv"
 "$build/tools/plotcsv" -x bias_pct -y rate -g verdict,scene -f bias=none\|region1\|region2\|region5 \
-    -f verdict=compare-2\|grade-page --title "How often a verdict says biased (${size}x$size, $spp spp)" \
+    -f verdict=compare-2\|grade-page\|grade-auto --title "How often a verdict says biased (${size}x$size, $spp spp)" \
     --xlabel "bias planted in a 32x32 rectangle (%)" --ylabel "rate of 'biased'" \
     -o "$out/calibration.svg" "$out/calibration.csv" || die "plotcsv failed"
 awk -F, -v size="$size" -v spp="$spp" -f "$root/tests/calibrate/table.awk" "$out/calibration.csv" >"$work/table.md"

@@ -1,7 +1,7 @@
 #!/bin/sh
 # grade-pages.sh - a compare report page for each reference render of a lab.
 #
-#   grade-pages.sh [--help] [--spp N] HANDOUT STAGE OUT
+#   grade-pages.sh [--help] [--spp N|auto] [--max-spp N] HANDOUT STAGE OUT
 #
 # HANDOUT is a built lab handout (grade.sh's copy), STAGE its stage
 # (05_bvh).  For every Mitsuba reference the stage's tests compare with
@@ -12,7 +12,12 @@
 # pages").  Prints for each page its verdict, what its tests can find
 # (compare's power line, pages with block tests), its regions and its path.  --spp N: the
 # samples per pixel of each render of the noise-tested pages (default
-# lablib.sh's GRADE_DEFAULT_SPP; make grade LAB=dir SPP=N).
+# lablib.sh's GRADE_DEFAULT_SPP; make grade LAB=dir SPP=N).  --spp auto:
+# for each noise-tested page, as many as its test needs to find a 2% bias
+# in 9 of 10 32x32 windows 9 times in 10 (compare's power line on a pilot
+# of two renders of GRADE_DEFAULT_SPP, with seeds of their own, not
+# judged), at least the pilot's and at most --max-spp (default
+# GRADE_MAX_SPP); make grade LAB=dir SPP=auto.
 #
 # What is compared, as the stage's own tests do it:
 #   stages 02-05  cornell_diffuse_point_direct: one render, the reference's
@@ -42,9 +47,11 @@ LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 . "$LAB_DIR/lablib.sh"
 
 spp=$GRADE_DEFAULT_SPP
-parse_options '--spp spp=VALUE' "$@"
+max_spp=$GRADE_MAX_SPP
+parse_options '--spp spp=VALUE --max-spp max_spp=VALUE' "$@"
 shift "$po_used"
-check_spp "$spp"
+check_spp "$spp" auto
+check_spp "$max_spp"
 [ $# -eq 3 ] || usage_error "expected HANDOUT STAGE OUT, got $# argument(s)"
 dir=$(abs_dir "$1")
 stage=$2
@@ -76,28 +83,58 @@ handout_paths() {
         { print replace(replace($0, refs, "tests/reference/"), work, "") }'
 }
 
+# renders NAME SCENE COUNT FIRST_SEED "RENDER OPTIONS": COUNT renders of
+# scenes/SCENE.scene, seeds FIRST_SEED on, as $work/NAME.I.pfm; their paths
+# in rd_inputs.  False (the error printed, failed set) when one fails.
+renders() {
+    rd_inputs=
+    rd_i=1
+    while [ "$rd_i" -le "$3" ]; do
+        # shellcheck disable=SC2086 # the options are words
+        if ! "$render" -q -W 256 -H 256 $5 --seed "$(($4 + rd_i - 1))" -o "$work/$1.$rd_i.pfm" \
+            "$dir/scenes/$2.scene" >"$work/render.log" 2>&1; then
+            echo "    $1: the render failed:"
+            sed -n '1,5s/^/        /p' "$work/render.log"
+            failed=1
+            return 1
+        fi
+        rd_inputs="$rd_inputs $work/$1.$rd_i.pfm"
+        rd_i=$((rd_i + 1))
+    done
+}
+
+# page_spp NAME SCENE: the samples per pixel of the renders of noise-tested
+# page NAME, into pg_spp: --spp's, or with --spp auto, from its pilot
+# (compare's power line says how many times the pilot's samples find 2%
+# in 9 windows of 10; the reference's own noise may hide it at any spp).
+# False when the pilot could not render or be compared.
+page_spp() {
+    pg_spp=$spp
+    [ "$spp" = auto ] || return 0
+    renders "$1.pilot" "$2" 2 1001 "--spp $GRADE_DEFAULT_SPP" || return 1
+    # shellcheck disable=SC2086
+    "$compare" -q --alpha "$alpha" $rd_inputs "$refs/$1.pfm" >"$work/pilot" 2>&1 || [ $? -eq 1 ] || {
+        echo "    $1: compare failed on the pilot: $(handout_paths <"$work/pilot")"
+        failed=1
+        return 1
+    }
+    spp_for_power "$work/pilot" "$GRADE_DEFAULT_SPP" "$max_spp" || {
+        echo "    $1: no power line in compare's verdict on the pilot: $(head -n 1 "$work/pilot")"
+        failed=1
+        return 1
+    }
+    pg_spp=$sfp_spp
+    echo "    $1: $pg_spp spp a render (its pilot, two renders of $GRADE_DEFAULT_SPP spp: $sfp_says)"
+}
+
 # page NAME SCENE RENDERS "RENDER OPTIONS" [COMPARE OPTIONS...]
 page() {
     pg_name=$1
     pg_base=$2
-    pg_scene=$dir/scenes/$2.scene
-    pg_renders=$3
     pg_options=$4
+    renders "$1" "$2" "$3" 1 "$4" || return 0
+    pg_inputs=$rd_inputs
     shift 4
-    pg_inputs=
-    pg_i=1
-    while [ "$pg_i" -le "$pg_renders" ]; do
-        # shellcheck disable=SC2086 # the options are words
-        if ! "$render" -q -W 256 -H 256 $pg_options --seed "$pg_i" -o "$work/$pg_name.$pg_i.pfm" "$pg_scene" \
-            >"$work/render.log" 2>&1; then
-            echo "    $pg_name: the render failed:"
-            sed -n '1,5s/^/        /p' "$work/render.log"
-            failed=1
-            return 0
-        fi
-        pg_inputs="$pg_inputs $work/$pg_name.$pg_i.pfm"
-        pg_i=$((pg_i + 1))
-    done
     pg_status=0
     pg_regions=
     [ -f "$refs/$pg_base.feature.pfm" ] && pg_regions="--regions $refs/$pg_base.feature.pfm"
@@ -120,8 +157,10 @@ page() {
 # noise_pages N: the family level of each of the lab's N block-tested pages.
 noise_pages() {
     alpha=$(page_alpha "$1")
-    echo "    (each page below: two renders of $spp spp, tested at alpha $alpha, so that correct work is called biased on any of"
-    echo "    its $1 page(s) in at most 1 grade in 100: docs/calibration/README.md)"
+    np_spp="$spp spp"
+    [ "$spp" != auto ] || np_spp="the spp its pilot asks for"
+    echo "    (each page below: two renders of $np_spp, tested at alpha $alpha, so that correct work is called biased on"
+    echo "    any of its $1 page(s) in at most 1 grade in 100: docs/calibration/README.md)"
 }
 
 case $nn in
@@ -136,12 +175,13 @@ case $nn in
         ;;
     06)
         noise_pages 1
-        page cornell_diffuse_point_direct cornell_diffuse_point 2 "--spp $spp" --alpha "$alpha"
+        page_spp cornell_diffuse_point_direct cornell_diffuse_point &&
+            page cornell_diffuse_point_direct cornell_diffuse_point 2 "--spp $pg_spp" --alpha "$alpha"
         ;;
     07 | 08)
         noise_pages 3
         for scene in cornell_diffuse_point cornell_diffuse_area cornell_specular_area; do
-            page "${scene}_gi" "$scene" 2 "--spp $spp" --alpha "$alpha"
+            page_spp "${scene}_gi" "$scene" && page "${scene}_gi" "$scene" 2 "--spp $pg_spp" --alpha "$alpha"
         done
         ;;
 esac

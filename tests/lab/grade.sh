@@ -35,8 +35,10 @@
 #   --pages DIR    where the report pages go (default LAB/grade): one
 #                  compare page per reference render (grade-pages.sh)
 #   --no-pages     write no report pages
-#   --spp N        samples per pixel of the pages' renders (grade-pages.sh;
-#                  default lablib.sh's GRADE_DEFAULT_SPP)
+#   --spp N|auto   samples per pixel of the pages' renders (grade-pages.sh;
+#                  default lablib.sh's GRADE_DEFAULT_SPP); auto: as many as
+#                  each page needs to find a 2% bias in a 32x32 window
+#                  (from a pilot), up to GRADE_MAX_SPP
 #   --keep DIR     keep what the grading read in DIR: its records, the
 #                  test programs' logs (NAME.log), the build's (build.log),
 #                  and how each TEST() counted (tests: grade.awk's tests=)
@@ -72,7 +74,7 @@ parse_options '--pristine pristine=1 --lab-only lab_only=1 --no-pages no_pages=1
 shift "$po_used"
 [ $# -eq 1 ] || usage_error "expected one handout directory, got $# argument(s)"
 case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
-check_spp "$spp"
+check_spp "$spp" auto
 case $jobs in '' | *[!0-9]*) usage_error "--jobs needs a number, got '$jobs'" ;; esac
 [ -d "$1" ] || die "no such directory: $1"
 [ -z "$controls" ] || [ -f "$controls" ] || die "no such file: $controls"

@@ -323,9 +323,38 @@ handout_differences() {
 # pages' power to find a bias rests on (docs/calibration/README.md).
 GRADE_DEFAULT_SPP=64
 
-# check_spp N - usage error unless N (a --spp value) is a positive number.
+# The most samples per pixel --spp auto gives a page's renders (some two
+# and a half minutes a render of stage 07 at 256x256 on two cores).
+GRADE_MAX_SPP=4096
+
+# check_spp N [auto] - usage error unless N (a --spp value) is a positive
+# number, or, with a second argument, the word auto.
 check_spp() {
-    case $1 in '' | 0* | *[!0-9]*) usage_error "--spp needs a positive number, got '$1'" ;; esac
+    [ "$1" = auto ] && [ $# -gt 1 ] && return 0
+    case $1 in '' | 0* | *[!0-9]*) usage_error "--spp needs a positive number${2:+ or auto}, got '$1'" ;; esac
+}
+
+# spp_for_power FILE SPP MAX - the samples per pixel at which the renders
+# FILE judged (compare -q's output on renders of SPP spp: its "power:"
+# line) find a 2% bias in 9 windows of 10, 9 times in 10: SPP times the
+# factor the line gives, up to a whole pass of 16 samples, at least SPP,
+# at most MAX (also when the reference's own noise hides 2% at any spp).
+# Sets sfp_spp, and sfp_says to what the line said; false without a line.
+spp_for_power() {
+    sfp_power=$(sed -n 's/^power: //p' "$1")
+    case $sfp_power in
+        *" already") sfp_times=1 sfp_says="finds 2% in 9 windows of 10 already" ;;
+        *"hidden by the reference's own noise") sfp_times=inf sfp_says="2% in 9 windows of 10 is hidden by the reference's own noise" ;;
+        *)
+            sfp_times=$(printf '%s\n' "$sfp_power" | sed -n 's/.* about \([0-9.]*\) times these renders.*/\1/p')
+            sfp_says="2% in 9 windows of 10 needs $sfp_times times their samples"
+            ;;
+    esac
+    [ -n "$sfp_times" ] || return 1
+    sfp_spp=$(awk -v t="$sfp_times" -v base="$2" -v most="$3" 'BEGIN {
+        n = t == "inf" ? most : 16 * int((base * t + 15) / 16)
+        print (n < base ? base : (n > most ? most : n)) }')
+    [ "$sfp_spp" != "$3" ] || [ "$sfp_times" = 1 ] || sfp_says="$sfp_says; at most $3"
 }
 
 # page_alpha N - the family level of one of N noise-tested report pages of

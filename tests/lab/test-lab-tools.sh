@@ -559,7 +559,7 @@ test_branches() {
 # with its images embedded.
 test_grade_pages() {
     root=$(cd "$LAB_DIR/../.." && pwd)
-    expect_exit grade-pages/spp-must-be-positive 2 "spp needs a positive number, got '0'" \
+    expect_exit grade-pages/spp-must-be-positive 2 "spp needs a positive number or auto, got '0'" \
         "$LAB_DIR/grade-pages.sh" --spp 0 "$root" 06_supersample "$T/pages/none"
     for gp_stage in 03_soft_shadows 06_supersample; do
         if [ ! -x "$root/build/$gp_stage/render" ]; then
@@ -592,6 +592,62 @@ test_grade_pages() {
             fail "grade-pages/$gp_stage" "$gp_pages pages, $gp_images images" "$(cat "$T/out")"
         fi
     done
+    # --spp auto: a pilot of two 64-spp renders, whose power line already
+    # finds 2% on lab 06's page, so its renders keep the pilot's spp.
+    if "$LAB_DIR/grade-pages.sh" --spp auto "$root" 06_supersample "$T/pages/auto" >"$T/out" 2>&1 &&
+        grep -q "two renders of the spp its pilot asks for" "$T/out" &&
+        grep -q "^    cornell_diffuse_point_direct: 64 spp a render (its pilot, two renders of 64 spp: finds 2% in 9 windows of 10 already)$" "$T/out" &&
+        grep -q "^    cornell_diffuse_point_direct: consistent with the reference" "$T/out" &&
+        [ "$(ls "$T/pages/auto"/*.html | wc -l)" -eq 1 ]; then
+        ok grade-pages/spp-auto
+    else
+        fail grade-pages/spp-auto "$(cat "$T/out")"
+    fi
+    expect_exit grade-pages/spp-auto-or-number 2 "spp needs a positive number or auto, got 'x'" \
+        "$LAB_DIR/grade-pages.sh" --spp x "$root" 06_supersample "$T/pages/none"
+}
+
+# spp_for_power (lablib.sh) on compare's own power lines: two renders of 1
+# spp of lab 06, which need many times their samples to find 2% (the spp
+# those ask for, a whole number of passes of 16, at most MAX), and
+# lines written as compare writes its other two cases.
+test_spp_for_power() {
+    root=$(cd "$LAB_DIR/../.." && pwd)
+    sp_render=$root/build/06_supersample/render
+    sp_scene=$root/scenes/cornell_diffuse_point.scene
+    sp_ref=$root/tests/reference/cornell_diffuse_point_direct.pfm
+    for sp_i in 1 2; do
+        "$sp_render" -q -W 256 -H 256 --spp 1 --seed "$sp_i" -o "$T/sp.$sp_i.pfm" "$sp_scene" >/dev/null 2>&1 ||
+            { fail spp-for-power "no render of lab 06 (run make first)"; return; }
+    done
+    "$root/build/tools/compare" -q "$T/sp.1.pfm" "$T/sp.2.pfm" "$sp_ref" >"$T/sp.out" 2>&1 || true
+    sp_times=$(grep -o "about [0-9.]* times these renders' samples" "$T/sp.out" | awk '{ print $2 }')
+    sp_want=$(awk -v t="$sp_times" 'BEGIN { n = 16 * int((t + 15) / 16); print (n > 4096 ? 4096 : n) }')
+    if [ -n "$sp_times" ] && spp_for_power "$T/sp.out" 1 4096 && [ "$sfp_spp" = "$sp_want" ] &&
+        [ "$sfp_says" = "2% in 9 windows of 10 needs $sp_times times their samples" ]; then
+        ok spp-for-power/compare-line
+    else
+        fail spp-for-power/compare-line "times '$sp_times', want $sp_want, got '${sfp_spp:-}' ('${sfp_says:-}')" "$(cat "$T/sp.out")"
+    fi
+    sp_ok=1
+    while IFS='|' read -r sp_line sp_base sp_max sp_spp sp_says; do
+        printf 'verdict\npower: %s\n' "$sp_line" >"$T/sp.line"
+        if ! spp_for_power "$T/sp.line" "$sp_base" "$sp_max" || [ "$sfp_spp" != "$sp_spp" ] || [ "$sfp_says" != "$sp_says" ]; then
+            fail spp-for-power/cases "$sp_line: want $sp_spp ($sp_says), got ${sfp_spp:-} (${sfp_says:-})"
+            sp_ok=0
+        fi
+    done <<'EOF_CASES'
+a bias ...; 2.0% is found so in 9 windows of 10 already|64|4096|64|finds 2% in 9 windows of 10 already
+a bias ...; to find 2.0% so in 9 windows of 10: about 2.1 times these renders' samples (--spp, or more renders with other --seed values)|64|4096|144|2% in 9 windows of 10 needs 2.1 times their samples
+a bias ...; to find 2.0% so in 9 windows of 10: about 1400 times these renders' samples (--spp, or more renders with other --seed values)|64|4096|4096|2% in 9 windows of 10 needs 1400 times their samples; at most 4096
+a bias ...; 2.0% in 9 windows of 10 is hidden by the reference's own noise|64|512|512|2% in 9 windows of 10 is hidden by the reference's own noise; at most 512
+EOF_CASES
+    printf 'consistent\n' >"$T/sp.line"
+    if spp_for_power "$T/sp.line" 64 4096; then
+        fail spp-for-power/cases "a verdict without a power line gave ${sfp_spp:-}"
+        sp_ok=0
+    fi
+    [ "$sp_ok" = 0 ] || ok spp-for-power/cases
 }
 
 # make docs-images in a build without glTF: the mesh image is skipped with
@@ -824,6 +880,7 @@ test_options
 test_grade_score
 test_controls
 test_grade_pages
+test_spp_for_power
 test_docs_images
 test_help
 test_calibrate_plants
