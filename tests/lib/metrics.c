@@ -291,31 +291,6 @@ test_block(
     }
 }
 
-/* Fill block `index` (rectangle already set) from the renders and ref. */
-static void
-fill_block(
-    const struct image *renders,
-    int k,
-    const struct image *ref,
-    const struct metrics_block_params *params,
-    int index,
-    struct metrics_block *b)
-{
-    struct stattest_welford w[3] = {{0}, {0}, {0}};
-    for (int i = 0; i < k; i++) {
-        double m[3];
-        block_mean(&renders[i], b, m);
-        for (int c = 0; c < 3; c++) {
-            stattest_welford_add(&w[c], m[c]);
-        }
-    }
-    for (int c = 0; c < 3; c++) {
-        b->mean[c] = w[c].mean;
-        b->var_mean[c] = stattest_welford_var_of_mean(&w[c]);
-    }
-    test_block(ref, params, index, k - 1, b);
-}
-
 /* The per-pixel variances of a block summed: sum v and sum v^2 per channel. */
 static void
 block_variance_sums(const struct image *variance, const struct metrics_block *b, double sum[6])
@@ -487,26 +462,6 @@ block_layout(
     return true;
 }
 
-bool
-metrics_block_stats(
-    const struct image *renders,
-    int k,
-    const struct image *ref,
-    const struct metrics_block_params *params,
-    struct metrics_block_stats *out,
-    struct diag *err)
-{
-    *out = (struct metrics_block_stats){0};
-    if (!check_block_inputs(renders, k, ref, params, err) || !block_layout(ref, params, out, err)) {
-        return false;
-    }
-    out->k = k;
-    for (int i = 0; i < out->n_blocks; i++) {
-        fill_block(renders, k, ref, params, i, &out->blocks[i]);
-    }
-    return true;
-}
-
 /* Window w of s: blocks (i..i+1, j..j+1) merged.  The variance of its
  * mean is the sum of its blocks' (n_b^2 var_mean_b, each already at least
  * its neighbourhood's) over N^2; its degrees of freedom are
@@ -574,7 +529,6 @@ metrics_block_stats_variance(
     if (!check_block_inputs(pair, 2, ref, params, err) || !block_layout(ref, params, out, err)) {
         return false;
     }
-    out->k = 1;
     double *sums = malloc((size_t)out->n_blocks * 6 * sizeof *sums);
     if (!sums) {
         metrics_block_stats_free(out);

@@ -97,15 +97,16 @@ metrics_smooth_mask(const struct image *ref, double tolerance, size_t *n_smooth,
 
 /* ---- Block statistics for render-vs-reference t-tests --------------------
  *
- * K independent renders of a scene (different seeds) are cut into square
- * blocks of block_size pixels (blocks at the right and bottom edges may be
- * smaller; block_size 1 gives per-pixel tests, block_size >= the image size
- * one image-mean test).  Per block and channel:
- *   mean     = mean over the K renders of the render's block mean
- *   var_mean = sample variance of the K block means / K (the squared SE of
- *              `mean`), with K - 1 degrees of freedom
+ * An estimate of a scene (one render, or the mean of renders with
+ * different seeds: estimate_combine) with the variance of each of its
+ * pixels is cut into square blocks of block_size pixels (blocks at the
+ * right and bottom edges may be smaller; block_size 1 gives per-pixel
+ * tests, block_size >= the image size one image-mean test).  Per block and
+ * channel:
+ *   mean     = the estimate's block mean
+ *   var_mean = its squared standard error (metrics_block_stats_variance)
  *   ref_mean = the reference's block mean, ref_se its standard error
- *   t, dof, p from stattest_t_test_estimates(mean, var_mean, K - 1,
+ *   t, dof, p from stattest_t_test_estimates(mean, var_mean, dof,
  *              ref_mean, ref_se^2, ref_dof): Welch's test with the
  *              Welch-Satterthwaite degrees of freedom.
  * A block with a non-finite value gets t = dof = NaN and p = 0 (a certain
@@ -147,7 +148,6 @@ struct metrics_block {
 struct metrics_block_stats {
     int blocks_x, blocks_y; /* blocks across and down */
     int n_blocks; /* blocks_x * blocks_y; blocks in row-major order */
-    int k; /* renders */
     struct metrics_block *blocks;
     /* With params.windows: (blocks_x - 1) * (blocks_y - 1) windows in
      * row-major order, window (i, j) the blocks (i..i+1, j..j+1). */
@@ -164,28 +164,19 @@ int metrics_block_test_count(int width, int height, int block_size, bool windows
  * the windows. */
 const struct metrics_block *metrics_block_test(const struct metrics_block_stats *s, int i);
 
-/* Statistics of k >= 2 renders (all the reference's size) against ref.
- * Fails (diag) on bad parameters, mismatched sizes or no memory. */
-bool metrics_block_stats(
-    const struct image *renders,
-    int k,
-    const struct image *ref,
-    const struct metrics_block_params *params,
-    struct metrics_block_stats *out,
-    struct diag *err);
-
-/* The same tests for ONE estimate whose per-pixel variance is known (the
+/* The block tests of ONE estimate whose per-pixel variance is known (the
  * squared standard error of each pixel, e.g. from merge or from the spread
  * of a few renders): a block's var_mean is the sum of its pixels' variances
  * over n^2 (pixels are independent estimates), with Welch-Satterthwaite's
  * degrees of freedom from pixel_dof per pixel (0: exact variances).  Far
- * more powerful than the spread of K block means when K is small: two
- * renders give one degree of freedom per block there, but hundreds here.
+ * more powerful than a test on the spread of K renders' block means when
+ * K is small: two renders give that one degree of freedom per block, but
+ * hundreds here.
  * A block's var_mean is at least what the mean per-pixel variance of the
  * 3x3 blocks around it gives: where rare bright paths (caustics) carry
  * light, renders that missed them look darker and less noisy at once,
  * and the block's own variance alone would accuse correct code
- * (metrics.c, docs/calibration/README.md).  out->k is 1.  With
+ * (metrics.c, docs/calibration/README.md).  With
  * params->windows, also the windows of 2x2 blocks: a window's variance is
  * the sum of its blocks' (each at least its neighbourhood's). */
 bool metrics_block_stats_variance(
