@@ -245,11 +245,17 @@ judge() {
     echo "$jd_status" >>"$jd_out"
 }
 
-# plant_rect SET: "X,Y,32,32", a random rectangle of the image for set i
-# (the same for every verdict and scene of the set).
+# plant_rect SET: "X,Y,32,32", the rectangle of set i (the same for every
+# verdict and scene of the set): point i + 1 of Roberts' R2 sequence
+# (additive recurrence with the plastic number, 2018), so that any number
+# of sets spreads its rectangles evenly over the image.  (awk's rand()
+# right after srand(seed) is nearly linear in the seed in mawk: seeding
+# per set put the first sets' rectangles in one band.)
 plant_rect() {
-    awk -v i="$1" -v n="$size" 'BEGIN { srand(7919 * i + 13); w = (n < 32 ? n : 32)
-        printf "%d,%d,%d,%d", int(rand() * (n - w + 1)), int(rand() * (n - w + 1)), w, w }'
+    awk -v i="$1" -v n="$size" 'BEGIN { w = (n < 32 ? n : 32)
+        u = 0.5 + 0.7548776662466927 * (i + 1); v = 0.5 + 0.5698402909980532 * (i + 1)
+        u -= int(u); v -= int(v)
+        printf "%d,%d,%d,%d", int(u * (n - w + 1)), int(v * (n - w + 1)), w, w }'
 }
 
 # planted SET FACTOR RECT IN...: the inputs scaled, as $work/p.N.pfm.
