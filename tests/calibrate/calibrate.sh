@@ -55,6 +55,9 @@
 #                     grade-auto)
 #   --seed-offsets N  run the statistical stage tests N times (default 0)
 #   --out DIR         where the table and plot go (default docs/calibration)
+#   --append          keep the rows of OUT/calibration.csv for the scenes
+#                     this run does not measure (one table from runs of
+#                     different scenes, each with its own --sets)
 #   --threads N       render threads (default 2)
 #   --tools DIR       the compare and imgedit to judge with (default
 #                     build/tools; e.g. an older build, on the same pool)
@@ -83,10 +86,11 @@ threads=2
 tools=
 render=
 check_plants=0
+append=0
 parse_options "--size size=VALUE --spp spp=VALUE --sets sets=VALUE --bug-sets bug_sets=VALUE
     --scenes scenes=VALUE --verdicts verdicts=VALUE --seed-offsets seed_offsets=VALUE
     --out out=VALUE --threads threads=VALUE --tools tools=DIR --render render=VALUE
-    --check-plants check_plants=1" "$@"
+    --check-plants check_plants=1 --append append=1" "$@"
 shift "$po_used"
 [ $# -eq 0 ] || usage_error "unexpected argument: $1"
 
@@ -442,6 +446,13 @@ if [ "$seed_offsets" -gt 0 ]; then
     done <"$work/seeds"
 fi
 
+if [ "$append" = 1 ] && [ -f "$out/calibration.csv" ]; then
+    # The earlier rows of the other scenes first, as their run wrote them.
+    awk -F, -v scenes=" $scenes " 'NR == 1 { print; next } index(scenes, " " $2 " ") == 0' \
+        "$out/calibration.csv" >"$work/kept.csv"
+    sed 1d "$csv" >>"$work/kept.csv"
+    mv "$work/kept.csv" "$csv"
+fi
 cp "$csv" "$out/calibration.csv.tmp"
 mv "$out/calibration.csv.tmp" "$out/calibration.csv"
 "$build/tools/plotcsv" -x bias_pct -y rate -g verdict,scene -f bias=none\|region1\|region2\|region5 \

@@ -10,6 +10,7 @@
 # is at least 0.9).  Then the stage tests under other seeds (verdict
 # "test:PROGRAM"), when run.
 NR == 1 { next }
+$1 == "grade-auto" { auto = 1 }
 {
     row = sprintf("| %s | %s | %s | %d of %d | %.3f | %.3f-%.3f | %d | %.0f |", $1, $2, $3, $6, $5, $7, $8, $9, $10, $11)
     if ($1 ~ /^test:/) {
@@ -23,6 +24,8 @@ NR == 1 { next }
 }
 END {
     printf "Measured with %dx%d renders of %d spp (stage 07's defaults).\n\n", size, size, spp
+    if (auto)
+        printf "grade-auto: each set's two renders of %d spp are its pilot; the two renders judged have the spp it asks for.\n\n", spp
     print "False alarms: correct renders called \"biased\" (target: rate <= 0.01, upper end <= 0.02)."
     print ""
     print "| verdict | scene | bias | biased | rate | 95% interval | renders | processor s | meets |"
