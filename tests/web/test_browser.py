@@ -34,6 +34,7 @@ import math
 import os
 import re
 import shutil
+import signal
 import struct
 import subprocess
 import sys
@@ -134,8 +135,10 @@ class Chromium:
             os.dup2(self.to_browser_r, 3)
             os.dup2(self.from_browser_w, 4)
 
+        # A session of its own: close() stops its helper processes too.
         self.proc = subprocess.Popen(args, env=env, preexec_fn=pipes, pass_fds=(3, 4),
-                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                     start_new_session=True)
         os.close(self.to_browser_r)
         os.close(self.from_browser_w)
         self.buffer = b''
@@ -185,12 +188,22 @@ class Chromium:
             f.write(base64.b64decode(shot['data']))
 
     def close(self):
-        self.proc.terminate()
+        """Ask Chromium to quit, then stop whatever of its session is left:
+        a helper outliving it could still write into its profile (in the
+        test's temporary directory) after the test removed it."""
+        try:
+            self.send('Browser.close', timeout=10)
+        except (RuntimeError, TimeoutError, EOFError, OSError):
+            pass
         try:
             self.proc.wait(timeout=20)
         except subprocess.TimeoutExpired:
             self.proc.kill()
             self.proc.wait()
+        try:
+            os.killpg(self.proc.pid, signal.SIGKILL)
+        except (ProcessLookupError, PermissionError):
+            pass
         os.close(self.to_browser_w)
         os.close(self.from_browser_r)
 
@@ -365,7 +378,11 @@ def main():
         if server:
             server.terminate()
             server.wait()
-        shutil.rmtree(tmp, ignore_errors=True)
+        for _ in range(50):
+            shutil.rmtree(tmp, ignore_errors=True)
+            if not os.path.exists(tmp):
+                break
+            time.sleep(0.1)
     finish()
 
 
