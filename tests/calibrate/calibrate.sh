@@ -347,7 +347,7 @@ for scene in $scenes; do
                 a=$dir/auto/$sfp_spp/$((3 * BASE + 2 * i + j)).pfm
                 [ -f "$a" ] || { mkdir -p "$dir/auto/$sfp_spp"; render_one "$render" "$scene" "$sfp_spp" $((3 * BASE + 2 * i + j)) "$a"; }
                 eval "a$j=\$a"
-                seconds_per_render "$dir/auto/$sfp_spp" >>"$work/ga.seconds"
+                echo "$(seconds_per_render "$dir/auto/$sfp_spp")" >>"$work/ga.seconds"
             done
             auto_renders=$((auto_renders + 2))
             echo "$sfp_spp" >>"$work/ga.spp"
