@@ -23,11 +23,11 @@
 #                 its pilot, whose power line sets the spp (spp_for_power)
 #                 of two fresh renders, judged as grade-page; with a 2%
 #                 bias planted as below too (not in the default list: a set
-#                 costs some 36 times the others on the point-lit and
+#                 costs 35-45 times the others on the point-lit and
 #                 specular boxes)
 # A verdict is "biased" when compare exits 1.  The same pool, with a bias
 # planted into the renders' images (imgedit --scale: 1%, 2% and 5% in a
-# 32x32 rectangle at a random place, 0.5% over the whole image), measures
+# 32x32 rectangle spread over the image by plant_rect, 0.5% over the whole image), measures
 # how often compare-2 and grade-page find it; and BUG_SETS pairs of renders
 # of stage 07 with a bug planted in its code (check-planted's plant_stage):
 #   missing-cosine  a shadow ray's estimate without the receiver's cosine

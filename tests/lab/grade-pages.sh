@@ -105,8 +105,9 @@ renders() {
 
 # page_spp NAME SCENE: the samples per pixel of the renders of noise-tested
 # page NAME, into pg_spp: --spp's, or with --spp auto, from its pilot
-# (compare's power line says how many times the pilot's samples find 2%
-# in 9 windows of 10; the reference's own noise may hide it at any spp).
+# (compare's power line, at the page's alpha from noise_pages, says how
+# many times the pilot's samples find 2% in 9 windows of 10; the
+# reference's own noise may hide it at any spp).
 # False when the pilot could not render or be compared.
 page_spp() {
     pg_spp=$spp

@@ -323,8 +323,9 @@ handout_differences() {
 # pages' power to find a bias rests on (docs/calibration/README.md).
 GRADE_DEFAULT_SPP=64
 
-# The most samples per pixel --spp auto gives a page's renders (some two
-# and a half minutes a render of stage 07 at 256x256 on two cores).
+# The most samples per pixel --spp auto gives a page's renders (about two
+# minutes a render of stage 07 at 256x256 on two cores, at the 2.1 s that
+# one of 64 spp took).
 GRADE_MAX_SPP=4096
 
 # check_spp N [auto] - usage error unless N (a --spp value) is a positive

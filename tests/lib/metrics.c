@@ -376,33 +376,32 @@ fill_block_variance(
     test_block(ref, params, index, sum_dof(own, pixel_dof), b);
 }
 
+/* The block parameters, and the render and its variance the reference's size. */
 static bool
 check_block_inputs(
-    const struct image *renders,
-    int k,
+    const struct image *render,
+    const struct image *variance,
     const struct image *ref,
     const struct metrics_block_params *params,
     struct diag *err)
 {
-    if (k < 2) {
-        diag_set(err, NULL, 0, 0, "block statistics need at least 2 renders, got %d", k);
-        return false;
-    }
     if (params->block_size < 1 || !(params->ref_rel_se >= 0) || !(params->ref_dof >= 0)) {
         diag_set(err, NULL, 0, 0, "bad block parameters (size %d)", params->block_size);
         return false;
     }
-    for (int i = 0; i < k; i++) {
-        if (!same_size(&renders[i], ref)) {
+    const struct image *images[2] = {render, variance};
+    const char *names[2] = {"render", "variance"};
+    for (int i = 0; i < 2; i++) {
+        if (!same_size(images[i], ref)) {
             diag_set(
                 err,
                 NULL,
                 0,
                 0,
-                "render %d is %dx%d but the reference is %dx%d",
-                i,
-                renders[i].width,
-                renders[i].height,
+                "the %s is %dx%d but the reference is %dx%d",
+                names[i],
+                images[i]->width,
+                images[i]->height,
                 ref->width,
                 ref->height);
             return false;
@@ -524,9 +523,7 @@ metrics_block_stats_variance(
         diag_set(err, NULL, 0, 0, "bad degrees of freedom %g", pixel_dof);
         return false;
     }
-    /* The size checks of two renders serve the render and its variance. */
-    const struct image pair[2] = {*render, *variance};
-    if (!check_block_inputs(pair, 2, ref, params, err) || !block_layout(ref, params, out, err)) {
+    if (!check_block_inputs(render, variance, ref, params, err) || !block_layout(ref, params, out, err)) {
         return false;
     }
     double *sums = malloc((size_t)out->n_blocks * 6 * sizeof *sums);
