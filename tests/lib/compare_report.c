@@ -85,7 +85,7 @@ put_image(
 {
     fprintf(
         f,
-        "<img%s%s%s%s%s%s alt=\"%s\" src=\"data:image/png;base64,",
+        "<img%s%s%s%s%s%s decoding=\"sync\" alt=\"%s\" src=\"data:image/png;base64,",
         cls ? " class=\"" : "",
         cls ? cls : "",
         cls ? "\"" : "",
