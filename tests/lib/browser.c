@@ -38,42 +38,31 @@ browser_screenshot(
     char *log,
     size_t cap)
 {
+    /* tests/lib/chromium.py drives Chromium: it takes the picture once
+     * the page has loaded and is painted (see there why not Chromium's own
+     * --screenshot). */
     const char *home = test_tmp_path("chromium-home");
-    char profile[4200], tmp[4200], home_env[4200], size[64], out_arg[4200], url[4200];
-    snprintf(profile, sizeof profile, "--user-data-dir=%s/profile", home);
-    snprintf(tmp, sizeof tmp, "TMPDIR=%s", home);
-    snprintf(home_env, sizeof home_env, "HOME=%s", home);
-    snprintf(size, sizeof size, "--window-size=%d,%d", width, height);
-    snprintf(out_arg, sizeof out_arg, "--screenshot=%s", shot);
-    snprintf(url, sizeof url, "file://%s", page);
+    const char *script = test_root_path("tests/lib/chromium.py");
+    char chromium_env[4200], w[32], h[32];
+    snprintf(chromium_env, sizeof chromium_env, "CHROMIUM=%s", chromium);
+    snprintf(w, sizeof w, "%d", width);
+    snprintf(h, sizeof h, "%d", height);
     const char *const mkdir_argv[] = {"/bin/mkdir", "-p", home, NULL};
     if (test_run(mkdir_argv, log, cap) != 0) {
         return false;
     }
     const char *const argv[] = {
         "/usr/bin/env",
-        tmp,
-        home_env,
+        chromium_env,
         "/usr/bin/timeout",
-        "120",
-        chromium,
-        "--headless",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--disable-quic",
-        "--no-first-run",
-        "--disable-background-networking",
-        "--disable-component-update",
-        "--disable-sync",
-        "--hide-scrollbars",
-        /* Let the page's tasks (decoding its data-URI images, its script)
-         * finish before the shot: on a busy machine it was once taken
-         * with an image not yet painted. */
-        "--virtual-time-budget=5000",
-        profile,
-        size,
-        out_arg,
-        url,
+        "300",
+        "python3",
+        script,
+        page,
+        w,
+        h,
+        shot,
+        home,
         NULL};
     int status = test_run(argv, log, cap);
     const char *const rm_argv[] = {"/bin/rm", "-rf", home, NULL};

@@ -5,8 +5,10 @@
  *
  * Chromium: $CHROMIUM, else /usr/bin/chromium (Debian's package) or
  * /usr/bin/chromium-browser; tests skip with a message when there is none.
- * It runs with a fresh profile, HOME and TMPDIR in a directory of its own
- * under the test's temporary directory, removed afterwards.
+ * tests/lib/chromium.py drives it (python3) and takes the picture once the
+ * page has loaded and is painted.  It runs with a fresh profile, HOME and
+ * TMPDIR in a directory of its own under the test's temporary directory,
+ * removed afterwards.
  */
 #ifndef BROWSER_H
 #define BROWSER_H

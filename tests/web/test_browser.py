@@ -4,9 +4,8 @@
 Serves build/web/ with python3 -m http.server on 127.0.0.1 (started here,
 stopped by its pid), opens index.html in headless Chromium and drives the
 page through window.stagelight (common/web/app.js: it sets the page's
-controls and presses Render), speaking Chromium's DevTools protocol over
---remote-debugging-pipe (file descriptors 3 and 4, one JSON message per
-NUL-terminated line).  Checks, against the native build of the same stage:
+controls and presses Render), speaking Chromium's DevTools protocol
+(tests/lib/chromium.py).  Checks, against the native build of the same stage:
 
   - cornell_diffuse_area in stages 01 and 07, side by side, at 64x64 with
     16 spp, seed 7, on 3 workers: the PFM the page's download button gives
@@ -34,12 +33,14 @@ import math
 import os
 import re
 import shutil
-import signal
 import struct
 import subprocess
 import sys
 import tempfile
 import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'lib'))
+from chromium import Chromium  # noqa: E402  (tests/lib/chromium.py)
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), '..', '..'))
 WEB = os.path.join(ROOT, 'build', 'web')
@@ -116,96 +117,6 @@ def largest_difference(a, b):
         if d > worst:
             worst, where = d, i
     return worst, where
-
-
-class Chromium:
-    """Headless Chromium driven over --remote-debugging-pipe."""
-
-    def __init__(self, home):
-        self.to_browser_r, self.to_browser_w = os.pipe()
-        self.from_browser_r, self.from_browser_w = os.pipe()
-        env = dict(os.environ, HOME=home, TMPDIR=home)
-        chromium = os.environ.get('CHROMIUM') or shutil.which('chromium') or '/usr/bin/chromium'
-        args = [chromium, '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic',
-                '--no-first-run', '--disable-background-networking', '--disable-component-update',
-                '--disable-sync', '--user-data-dir=' + os.path.join(home, 'profile'),
-                '--remote-debugging-pipe', 'about:blank']
-
-        def pipes():
-            os.dup2(self.to_browser_r, 3)
-            os.dup2(self.from_browser_w, 4)
-
-        # A session of its own: close() stops its helper processes too.
-        self.proc = subprocess.Popen(args, env=env, preexec_fn=pipes, pass_fds=(3, 4),
-                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                                     start_new_session=True)
-        os.close(self.to_browser_r)
-        os.close(self.from_browser_w)
-        self.buffer = b''
-        self.next_id = 1
-        self.session = None
-
-    def send(self, method, params=None, timeout=300):
-        msg = {'id': self.next_id, 'method': method, 'params': params or {}}
-        if self.session:
-            msg['sessionId'] = self.session
-        self.next_id += 1
-        os.write(self.to_browser_w, json.dumps(msg).encode() + b'\0')
-        deadline = time.time() + timeout
-        while True:
-            while b'\0' not in self.buffer:
-                if time.time() > deadline:
-                    raise TimeoutError(method)
-                chunk = os.read(self.from_browser_r, 1 << 20)
-                if not chunk:
-                    raise EOFError('Chromium closed its pipe')
-                self.buffer += chunk
-            line, self.buffer = self.buffer.split(b'\0', 1)
-            answer = json.loads(line)
-            if answer.get('id') == msg['id']:
-                if 'error' in answer:
-                    raise RuntimeError('%s: %s' % (method, answer['error']))
-                return answer['result']
-
-    def open(self, url):
-        target = self.send('Target.createTarget', {'url': url})['targetId']
-        self.session = self.send('Target.attachToTarget',
-                                 {'targetId': target, 'flatten': True})['sessionId']
-
-    def evaluate(self, expression):
-        """The value of a JavaScript expression (awaited if a promise)."""
-        r = self.send('Runtime.evaluate', {'expression': expression, 'awaitPromise': True,
-                                           'returnByValue': True})
-        if 'exceptionDetails' in r:
-            raise RuntimeError(json.dumps(r['exceptionDetails'])[:2000])
-        return r['result'].get('value')
-
-    def screenshot(self, path, width, height):
-        self.send('Emulation.setDeviceMetricsOverride', {'width': width, 'height': height,
-                                                          'deviceScaleFactor': 1, 'mobile': False})
-        shot = self.send('Page.captureScreenshot', {'format': 'png'})
-        with open(path, 'wb') as f:
-            f.write(base64.b64decode(shot['data']))
-
-    def close(self):
-        """Ask Chromium to quit, then stop whatever of its session is left:
-        a helper outliving it could still write into its profile (in the
-        test's temporary directory) after the test removed it."""
-        try:
-            self.send('Browser.close', timeout=10)
-        except (RuntimeError, TimeoutError, EOFError, OSError):
-            pass
-        try:
-            self.proc.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            self.proc.kill()
-            self.proc.wait()
-        try:
-            os.killpg(self.proc.pid, signal.SIGKILL)
-        except (ProcessLookupError, PermissionError):
-            pass
-        os.close(self.to_browser_w)
-        os.close(self.from_browser_r)
 
 
 def native(stage, args, cwd):
