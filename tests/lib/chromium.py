@@ -28,6 +28,7 @@ import signal
 import subprocess
 import sys
 import time
+import urllib.request
 
 # Resolves once the document has loaded, its images are decoded and two
 # animation frames have passed (the second after the first was painted).
@@ -50,8 +51,9 @@ class Chromium:
         chromium = os.environ.get('CHROMIUM') or shutil.which('chromium') or '/usr/bin/chromium'
         args = [chromium, '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic',
                 '--no-first-run', '--disable-background-networking', '--disable-component-update',
-                '--disable-sync', '--hide-scrollbars', '--user-data-dir=' + os.path.join(home, 'profile'),
-                '--remote-debugging-pipe', 'about:blank']
+                '--disable-sync', '--hide-scrollbars',
+                '--user-data-dir=' + os.path.join(home, 'profile'), '--remote-debugging-pipe',
+                'about:blank']
 
         def pipes():
             os.dup2(self.to_browser_r, 3)
@@ -102,9 +104,12 @@ class Chromium:
             raise RuntimeError(json.dumps(r['exceptionDetails'])[:2000])
         return r['result'].get('value')
 
-    def screenshot(self, path, width, height):
+    def viewport(self, width, height):
         self.send('Emulation.setDeviceMetricsOverride', {'width': width, 'height': height,
                                                           'deviceScaleFactor': 1, 'mobile': False})
+
+    def screenshot(self, path, width, height):
+        self.viewport(width, height)
         shot = self.send('Page.captureScreenshot', {'format': 'png'})
         with open(path, 'wb') as f:
             f.write(base64.b64decode(shot['data']))
@@ -134,15 +139,13 @@ def screenshot(page, width, height, shot, home):
     browser = Chromium(home)
     try:
         browser.open('about:blank')
-        browser.send('Emulation.setDeviceMetricsOverride', {'width': width, 'height': height,
-                                                            'deviceScaleFactor': 1,
-                                                            'mobile': False})
-        url = 'file://' + os.path.abspath(page)
+        browser.viewport(width, height)
+        url = 'file://' + urllib.request.pathname2url(os.path.abspath(page))
         browser.send('Page.navigate', {'url': url})
-        # Page.navigate answers once the new document is committed; until
-        # then an evaluation may still run in about:blank.
+        # Page.navigate may answer before the new document is committed;
+        # until then an evaluation still runs in about:blank.
         deadline = time.time() + 120
-        while browser.evaluate('location.href') != url:
+        while browser.evaluate('location.protocol') != 'file:':
             if time.time() > deadline:
                 raise TimeoutError('the page did not open: ' + url)
             time.sleep(0.05)
