@@ -110,6 +110,10 @@ class Chromium:
 
     def screenshot(self, path, width, height):
         self.viewport(width, height)
+        self.capture(path)
+
+    def capture(self, path):
+        """The viewport as it is, into the PNG file path."""
         shot = self.send('Page.captureScreenshot', {'format': 'png'})
         with open(path, 'wb') as f:
             f.write(base64.b64decode(shot['data']))
@@ -150,7 +154,7 @@ def screenshot(page, width, height, shot, home):
                 raise TimeoutError('the page did not open: ' + url)
             time.sleep(0.05)
         browser.evaluate(SETTLED)
-        browser.screenshot(shot, width, height)
+        browser.capture(shot)
     finally:
         browser.close()
 
