@@ -13,6 +13,8 @@
 #include <unistd.h>
 
 #include "aov.h"
+#include "gltf.h"
+#include "image.h"
 #include "scene.h"
 #include "scene_parser.h"
 
@@ -490,12 +492,16 @@ cli_parse(
             return CLI_EXIT;
         }
         if (seen == ID_VERSION) {
+            /* The optional libraries too: what a scene may need that this
+             * build lacks (glTF meshes, .exr output) shows here first. */
             fprintf(
                 out,
-                "render (%s) stagelight %s, %s precision\n",
+                "render (%s) stagelight %s, %s precision, glTF: %s, OpenEXR: %s\n",
                 stage->name,
                 STAGELIGHT_VERSION,
-                REAL_NAME);
+                REAL_NAME,
+                gltf_available() ? "yes" : "no",
+                image_exr_available() ? "yes" : "no");
             return CLI_EXIT;
         }
     }

@@ -3,6 +3,8 @@
 
 #include "check.h"
 #include "cli.h"
+#include "gltf.h"
+#include "image.h"
 
 struct knobs {
     int samples;
@@ -30,6 +32,27 @@ parse(struct knobs *k, struct options *opt, struct diag *err, int argc, const ch
     enum cli_result result = cli_parse(argc, (char **)argv, opt, &stage, sink, err);
     fclose(sink);
     return result;
+}
+
+/* What `render --version` prints, into line (empty when it printed nothing). */
+static void
+version_line(char *line, int size)
+{
+    const struct option_spec none[] = {{.name = NULL}};
+    const struct cli_stage stage = {"99_test", "a test", none};
+    const char *argv[] = {"render", "--version"};
+    struct options opt;
+    struct diag err;
+    FILE *out = tmpfile();
+    line[0] = '\0';
+    if (out) {
+        CHECK(cli_parse(2, (char **)argv, &opt, &stage, out, &err) == CLI_EXIT);
+        rewind(out);
+        if (!fgets(line, size, out)) {
+            line[0] = '\0';
+        }
+        fclose(out);
+    }
 }
 
 TEST(defaults)
@@ -132,6 +155,23 @@ TEST(errors_say_what_was_expected)
     CHECK(parse(&k, &opt, &err, 2, help) == CLI_EXIT);
 }
 
+/* --version names the stage, its precision, and whether this build reads
+ * glTF and writes OpenEXR (both optional), as the build really does. */
+TEST(version_names_the_optional_libraries)
+{
+    char line[256];
+    version_line(line, sizeof line);
+    char expected[256];
+    snprintf(
+        expected,
+        sizeof expected,
+        "render (99_test) stagelight 1.0, %s precision, glTF: %s, OpenEXR: %s\n",
+        sizeof(real) == sizeof(float) ? "float" : "double",
+        gltf_available() ? "yes" : "no",
+        image_exr_available() ? "yes" : "no");
+    CHECK_MSG(strcmp(line, expected) == 0, "got '%s', expected '%s'", line, expected);
+}
+
 /* One number syntax for every option: decimal only, the range in every
  * message. */
 TEST(one_number_syntax_for_every_option)
@@ -177,4 +217,5 @@ TEST_MAIN(
     TEST_ENTRY(shared_options_long_short_and_equals),
     TEST_ENTRY(stage_options),
     TEST_ENTRY(errors_say_what_was_expected),
+    TEST_ENTRY(version_names_the_optional_libraries),
     TEST_ENTRY(one_number_syntax_for_every_option))

@@ -25,13 +25,6 @@
 /* float32 storage of coordinates of magnitude <= 10. */
 #define FLOAT_TOL 1e-5
 
-#define REQUIRE_GLTF() \
-    do { \
-        if (!gltf_available()) { \
-            SKIP("built without tinygltf"); \
-        } \
-    } while (0)
-
 /* --- helpers -------------------------------------------------------------- */
 
 /* A .glb of json (padded here) and bin (a multiple of 4 bytes, or NULL). */

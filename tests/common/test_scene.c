@@ -117,7 +117,10 @@ TEST(every_scene_loads)
         struct scene s;
         struct diag err = {.line = 0};
         bool ok = scene_load(test_root_path(names[i]), &s, &err);
-        if (!ok && !gltf_available() && strstr(err.msg, "no glTF support")) {
+        /* Without glTF no glTF scene or mesh loads, and the generated
+         * meshes (make models, which reads glTF) are not there to open. */
+        bool needs_gltf = strstr(err.msg, "no glTF support") || strstr(err.msg, "cannot load mesh");
+        if (!ok && !gltf_available() && needs_gltf) {
             printf("note: %s uses a mesh and this build has no glTF: not loaded\n", names[i]);
             continue;
         }
@@ -955,9 +958,7 @@ write_triangle_glb(const char *path)
 
 TEST(mesh_transform)
 {
-    if (!gltf_available()) {
-        SKIP("this build has no glTF support");
-    }
+    REQUIRE_GLTF();
     CHECK(write_triangle_glb(test_tmp_path("triangle.glb")));
     const char *text = HEADER WHITE "triangle v0 0 0 0 v1 1 0 0 v2 0 1 0 material white\n"
                                     "mesh file triangle.glb material white scale 2 3 4 "

@@ -9,7 +9,19 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "gltf.h"
 #include "image.h"
+
+/* Ends a test as skipped (check.h's SKIP) when this build reads no glTF:
+ * tinygltf is optional, and a test that needs a mesh file cannot run
+ * without it. */
+#define REQUIRE_GLTF() \
+    do { \
+        if (!gltf_available()) { \
+            SKIP("built without tinygltf (optional: apt-get install libtinygltf-dev): " \
+                 "no glTF file can be read"); \
+        } \
+    } while (0)
 
 /* The project root (environment ROOT, else the compiled-in path). */
 const char *test_root(void);

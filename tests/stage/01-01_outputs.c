@@ -154,9 +154,7 @@ check_refused_over_input(const char *scene, const char *option, const char *inpu
  * load reads besides (external buffers, images, read though not decoded). */
 TEST(an_output_over_a_file_the_scene_reads_is_refused)
 {
-    if (!gltf_available()) {
-        SKIP("built without glTF: no mesh can be read");
-    }
+    REQUIRE_GLTF();
     const char *dir = fresh_dir("over-mesh");
     const char *scene = in_dir(dir, "m.scene");
     size_t len = 0;

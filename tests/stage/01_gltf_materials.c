@@ -85,6 +85,7 @@ static const struct kind_case kinds[] = {
 
 TEST(each_kind_renders_as_the_scene_written_by_hand)
 {
+    REQUIRE_GLTF();
     for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
         const struct kind_case *k = &kinds[i];
         if (!write_sphere(k->name, k->gltf)) {
@@ -128,6 +129,7 @@ TEST(each_kind_renders_as_the_scene_written_by_hand)
 
 TEST(material_on_the_line_overrides_the_file)
 {
+    REQUIRE_GLTF();
     const char *lamp = "{\"name\":\"lamp\",\"emissiveFactor\":[1,0,0],\"pbrMetallicRoughness\":"
                        "{\"metallicFactor\":0.5,\"roughnessFactor\":0.5}}";
     if (!write_sphere("lamp", lamp) || !write_sphere("plain", NULL)) {
@@ -221,6 +223,7 @@ write_dropped(const char *name, const struct dropped_case *c)
 
 TEST(each_dropped_kind_warns_and_strict_refuses)
 {
+    REQUIRE_GLTF();
     for (size_t i = 0; i < sizeof dropped / sizeof dropped[0]; i++) {
         const struct dropped_case *c = &dropped[i];
         char name[32];

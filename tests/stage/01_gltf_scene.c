@@ -102,6 +102,7 @@ hand_scene(const char *name, const char *file, const char *origin, const char *t
 
 TEST(camera_and_point_light_from_the_file)
 {
+    REQUIRE_GLTF();
     const char *glb = write_file("lit", CAMERA_NODES, 3, CAMERAS "," LIGHTS(""));
     const char *front = hand_scene("front.scene", "lit.glb", "0 1 3", "0 1 2");
     const char *side = hand_scene("side.scene", "lit.glb", "3 1 0", "2 1 0");
@@ -130,6 +131,7 @@ TEST(camera_and_point_light_from_the_file)
 
 TEST(spot_and_directional_lights_warn_and_strict_refuses)
 {
+    REQUIRE_GLTF();
     char nodes[1024];
     snprintf(
         nodes,
@@ -164,6 +166,7 @@ TEST(spot_and_directional_lights_warn_and_strict_refuses)
 
 TEST(a_file_without_camera_is_refused)
 {
+    REQUIRE_GLTF();
     const char *glb = write_file("nocam", NULL, 0, NULL);
     static char text[OUTPUT_CAP];
     const char *out = test_tmp_path("nocam.pfm");
@@ -177,6 +180,7 @@ TEST(a_file_without_camera_is_refused)
 
 TEST(duck_renders_from_the_file_alone)
 {
+    REQUIRE_GLTF();
     const char *duck = test_root_path("scenes/models/Duck.glb");
     const char *out = test_tmp_path("duck.pfm");
     static char text[OUTPUT_CAP];
@@ -227,6 +231,7 @@ write_gltf(const char *name, const char *uri)
 
 TEST(gltf_buffers_inside_the_directory_only)
 {
+    REQUIRE_GLTF();
     static char text[OUTPUT_CAP];
     const char *out = test_tmp_path("gltf.pfm");
     const char *data =

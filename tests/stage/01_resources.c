@@ -376,9 +376,7 @@ mesh_scene(const char *name, const char *mesh)
 
 TEST(billion_element_accessor)
 {
-    if (!gltf_available()) {
-        SKIP("built without tinygltf");
-    }
+    REQUIRE_GLTF();
     gltf_with_count("billion.gltf", "1000000000", DATA_36);
     const char *none[] = {NULL};
     const char *words[] = {"billion.gltf", "accessor 0", "buffer view 0", NULL};
@@ -416,9 +414,7 @@ ten_million_triangles_glb(const char *name)
  * what the system refuses within the limit is exit 4 (below). */
 TEST(ten_million_triangles_glb)
 {
-    if (!gltf_available()) {
-        SKIP("built without tinygltf");
-    }
+    REQUIRE_GLTF();
     const char *glb = ten_million_triangles_glb("ten_million.glb");
     struct stat st;
     CHECK(stat(glb, &st) == 0 && st.st_size < 256 * 1024);
@@ -438,9 +434,7 @@ TEST(ten_million_triangles_glb)
  * run never builds the document (its peak is 32 MiB smaller at least). */
 TEST(gltf_json_bounded)
 {
-    if (!gltf_available()) {
-        SKIP("built without tinygltf");
-    }
+    REQUIRE_GLTF();
     const long n_values = 300000;
     char *extras = malloc((size_t)n_values * 2 + 16);
     size_t used = (size_t)sprintf(extras, "\"extras\":[0");
@@ -466,9 +460,7 @@ TEST(gltf_json_bounded)
 
 TEST(buffer_outside_the_model_refused)
 {
-    if (!gltf_available()) {
-        SKIP("built without tinygltf");
-    }
+    REQUIRE_GLTF();
     /* The 36 bytes, outside the models' directory and inside it. */
     static const unsigned char zeros[36];
     const char *outside = test_tmp_path("outside.bin");

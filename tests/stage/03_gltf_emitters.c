@@ -101,6 +101,7 @@ render(const char *scene, struct image *out)
 
 TEST(emissive_square_lights_like_the_area_light)
 {
+    REQUIRE_GLTF();
     if (!write_lamp("lamp", false)) {
         return;
     }
@@ -140,6 +141,7 @@ TEST(emissive_square_lights_like_the_area_light)
 
 TEST(one_sided_unless_double_sided)
 {
+    REQUIRE_GLTF();
     if (!write_lamp("one", false) || !write_lamp("two", true)) {
         return;
     }
@@ -163,6 +165,7 @@ TEST(one_sided_unless_double_sided)
 
 TEST(library_scene_written_as_gltf_renders_strict)
 {
+    REQUIRE_GLTF();
     const char *scene = test_root_path("scenes/cornell_blocks.gltf");
     const char *const args[] = {"--strict", "-W", "32", NULL};
     const char *const to_file[] = {"--strict", "-W", "32", "-o", test_tmp_path("blocks.pfm"), NULL};

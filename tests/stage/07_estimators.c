@@ -183,6 +183,7 @@ TEST(rr_and_nee_are_unbiased_specular)
  * two emitting triangles of cornell_gltf_area. */
 TEST(refinements_are_unbiased_gltf)
 {
+    REQUIRE_GLTF();
     if (atoi(STAGE_NAME) < 8) {
         SKIP("stage 07 has no light picker");
     }

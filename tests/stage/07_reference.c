@@ -288,6 +288,7 @@ TEST(specular_area_light_matches_mitsuba)
 
 TEST(gltf_box_and_light_match_mitsuba)
 {
+    REQUIRE_GLTF();
     const char *reference = "cornell_diffuse_area_gi";
     const struct case_ c = {"scenes/cornell_gltf_area.scene", reference};
     check_scene(&c, pathcheck_seed(7001) + 6000, defaults);
