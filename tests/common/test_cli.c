@@ -166,7 +166,7 @@ TEST(version_names_the_optional_libraries)
         expected,
         sizeof expected,
         "render (99_test) stagelight 1.0, %s precision, glTF: %s, OpenEXR: %s\n",
-        sizeof(real) == sizeof(float) ? "float" : "double",
+        REAL_NAME,
         gltf_available() ? "yes" : "no",
         image_exr_available() ? "yes" : "no");
     CHECK_MSG(strcmp(line, expected) == 0, "got '%s', expected '%s'", line, expected);
