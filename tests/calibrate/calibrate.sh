@@ -129,7 +129,8 @@ refs=$root/tests/reference
 for tool in "$render" "$compare" "$imgedit"; do
     [ -x "$tool" ] || die "no $tool: run make first"
 done
-[ -n "$scenes" ] || scenes=$(ls "$refs" | sed -n 's/_gi\.pfm$//p')
+all_scenes=$(ls "$refs" | sed -n 's/_gi\.pfm$//p')
+[ -n "$scenes" ] || scenes=$all_scenes
 key=$(cat "$render" | cksum | cut -d' ' -f1)
 cal=$build/calibrate
 pool=$cal/pool-$key-$size-$spp
@@ -398,8 +399,10 @@ for scene in $scenes; do
     echo "  $scene: verdicts done"
 done
 
-# One run of make grade: set i of every scene.
-if has_verdict grade; then
+# One run of make grade: set i of every scene (not measured on some of them).
+if has_verdict grade && [ "$(echo $scenes | tr ' ' '\n' | sort)" != "$(echo $all_scenes | tr ' ' '\n' | sort)" ]; then
+    echo "  grade: not measured (it takes every reference scene's page; --scenes left some out)"
+elif has_verdict grade; then
     n_scenes=$(echo $scenes | wc -w)
     awk -v n="$n_scenes" '{ any[$1] += $2; seen[$1]++ }
         END { for (i in seen) if (seen[i] == n) print (any[i] > 0) }' "$grade_tmp" >"$work/grade.any"
