@@ -138,6 +138,12 @@ SEEDS ?= 20
 test-seeds: all
 	@tests/calibrate/seed-offsets.sh $(SEEDS)
 
+# Every stage on random scenes nobody tuned it to, at random scales, and the
+# path tracers against Mitsuba 3 on them (tests/unseen/, docs/unseen.md).
+# UNSEEN_FLAGS: the script's options, e.g. --count 40 --first 100.
+unseen: all
+	@tests/unseen/unseen.sh $(UNSEEN_FLAGS)
+
 # The lessons' pictures (docs/images/), rendered by the stages.
 docs-images: all
 	@docs/make-images.sh
@@ -207,6 +213,7 @@ help:
 	'make bench            BVH build and trace rates, against brute force and Embree' \
 	'make calibrate        false-alarm and detection rates of every verdict (docs/calibration/)' \
 	'make test-seeds       the statistical stage tests under SEEDS (20) other seeds: failure rates' \
+	'make unseen           every stage on random scenes at random scales; the path tracers against Mitsuba 3' \
 	'make docs-images      the lessons'"'"' pictures (docs/images/)' \
 	'make lab STAGE=NN OUT=dir   a lab handout (SOLUTION=1 the instructor'"'"'s; FORCE=1 moves a changed one aside)' \
 	'make grade LAB=dir    build a handout, run its tests, score them (SPP=N or auto: the report pages'"'"' samples)' \
@@ -223,4 +230,4 @@ help:
 	'Knobs, with any target: REAL=float (single precision, in build/float/: make REAL=float test),' \
 	'WERROR=1 (warnings are errors), OPENEXR=0|1, TINYGLTF=0|1, CFLAGS=... (common/config.mk)'
 
-.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate test-seeds docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate test-seeds unseen docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)

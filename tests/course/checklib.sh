@@ -1,6 +1,6 @@
 # checklib.sh - the result lines of the course tools' tests (test-course.sh,
-# test-slurm.sh).  Sourced; the caller sets CHECKS (its prefix: course,
-# slurm).  ok NAME, fail NAME [DETAIL...], skip NAME count; finish prints
+# test-slurm.sh) and of tests/unseen/test-unseen.sh.  Sourced; the caller
+# sets CHECKS (its prefix: course, slurm, unseen).  ok NAME, fail NAME [DETAIL...], skip NAME count; finish prints
 # "N passed, N failed, N skipped" and exits 1 when a check failed.
 passed=0
 failed=0
