@@ -7,8 +7,9 @@ Writes to standard output a scene file drawn from SEED (the same seed, the
 same scene): a box of side 2 with some of its walls (rays escape through
 the missing ones), 1-4 spheres and 0-3 triangles of four random materials
 (diffuse, mirror, glass with an index from 1.05 to 2.5 or a bubble of
-0.7), 1-2 area lights under the ceiling (facing down, facing the ceiling
-so that their light reaches the room only round their edges, or tilted),
+0.7), 1-2 area lights 0.01 and 0.03 under the ceiling (facing down,
+facing the ceiling so that their light reaches the room only round their
+edges, or tilted),
 half the time a point light, a camera at a random place with a vertical
 field of view of 15-110 degrees, and an image of one of seven shapes
 (1x40 and 40x1 among them).  Only the statements that
@@ -80,9 +81,11 @@ def scene(seed, unit):
         v = [point([c[j] + rng.uniform(-0.5, 0.5) for j in range(3)]) for _ in range(3)]
         lines.append("triangle v0 %s v1 %s v2 %s material %s"
                      % (vec(v[0]), vec(v[1]), vec(v[2]), triangle_material))
-    for _ in range(rng.randint(1, 2)):
+    for i in range(rng.randint(1, 2)):
         a, b = rng.uniform(0.1, 0.8), rng.uniform(0.1, 0.8)
-        corner = [rng.uniform(-0.9, 0.9 - a), 1.99, rng.uniform(-0.9, 0.9 - b)]
+        # The second lamp 0.02 lower: two lamps in one plane could overlap,
+        # and which one a ray meets there would be decided by rounding.
+        corner = [rng.uniform(-0.9, 0.9 - a), 1.99 - 0.02 * i, rng.uniform(-0.9, 0.9 - b)]
         e1, e2 = [a, 0, 0], [0, 0, b]
         if rng.random() < 0.3:
             e1, e2 = e2, e1  # facing the ceiling, 0.01 above it
