@@ -11,11 +11,12 @@
  *    --rr-threshold 1 (stage 07's rule), on the same renders.
  *  - Small scenes skip the tree: a Cornell box (8 primitives) builds no BVH
  *    (its --stats report none); with --brute-force-max 0 it builds one.
- *  - MIS in the near field: a ceiling lit by a lamp 0.001 below it, facing
- *    it, seen 0.0001 and 0.001 beyond the lamp's edge, where a shadow ray's
- *    1/r^2 is nearly unbounded: the mean of 16 renders (4x4 pixels of a
- *    field of view of 0.0001 degrees, 4096 spp)
- *    meets Lambert's closed form within 4 standard errors and 1%.  Without
+ *  - MIS in the near field: a ceiling lit by a lamp 0.001 below it (0.1 in
+ *    the float build: NEAR_GAP below), facing it, seen a tenth of that and
+ *    that far beyond the lamp's edge, where a shadow ray's 1/r^2 is nearly
+ *    unbounded: the mean of 16 renders (4x4 pixels of a field of view of
+ *    0.0001 degrees, 4096 spp) meets Lambert's closed form within 4
+ *    standard errors and 1%.  Without
  *    MIS (stage 07's way) the estimate is unbiased but heavy-tailed there:
  *    measured +44% +- 26% at 0.001 (docs/unseen.md), untestable at this cost.
  * (That the refinements leave the expected image alone is 07_estimators'
@@ -132,8 +133,26 @@ TEST(small_scenes_skip_the_tree)
     image_free(&b);
 }
 
-/* The ceiling point d beyond the edge of the 0.6 x 0.6 lamp 0.001 below it
- * (the 4x4 pixels see it within 1e-6): its radiance, 0.8 / pi times its
+/*
+ * The near field's size.  Spawned rays start twice a quad's error bound off
+ * it, 128 ulps of |corner| + |edge1| + |edge2| (geometry.c): 1.4e-13 for
+ * the double build's ceiling of half-size 5, 3.8e-4 in float, 38% of a gap
+ * of 0.001 (measured: -6% and -48% at the two points).  Beyond the lamp's
+ * edge a point nearer the lamp gets less light (it sees the lamp more
+ * edge-on), so the float build tests a gap of 0.1 on a ceiling of
+ * half-size 1: its offset, 7.6e-5, is 0.08% of the gap (measured at a gap
+ * of 0.01: 0.8% of it, -0.95%).
+ */
+#ifdef REAL_IS_FLOAT
+#define NEAR_GAP 0.1
+#define CEILING_HALF 1.0
+#else
+#define NEAR_GAP 0.001
+#define CEILING_HALF 5.0
+#endif
+
+/* The ceiling point d beyond the edge of the 0.6 x 0.6 lamp NEAR_GAP below
+ * it (the 4x4 pixels see it within 1e-6): its radiance, 0.8 / pi times its
  * irradiance, against 16 renders. */
 static void
 check_near_field(double d)
@@ -144,12 +163,17 @@ check_near_field(double d)
         "camera origin %.17g -1 0 target %.17g 0 0 up 0 0 1 fov 0.0001\n"
         "image width 4 height 4\n"
         "material ceiling diffuse albedo 0.8 0.8 0.8\n"
-        "quad corner -5 0 -5 edge1 10 0 0 edge2 0 0 10 material ceiling\n"
-        "area_light corner -0.3 -0.001 -0.3 edge1 0 0 0.6 edge2 0.6 0 0 radiance 10 10 10\n",
+        "quad corner %.17g 0 %.17g edge1 %.17g 0 0 edge2 0 0 %.17g material ceiling\n"
+        "area_light corner -0.3 %.17g -0.3 edge1 0 0 0.6 edge2 0.6 0 0 radiance 10 10 10\n",
         x + 0.5,
-        x);
+        x,
+        -CEILING_HALF,
+        -CEILING_HALF,
+        2 * CEILING_HALF,
+        2 * CEILING_HALF,
+        -NEAR_GAP);
     double corners[4][3] = {
-        {-0.3, -0.001, -0.3}, {-0.3, -0.001, 0.3}, {0.3, -0.001, 0.3}, {0.3, -0.001, -0.3}};
+        {-0.3, -NEAR_GAP, -0.3}, {-0.3, -NEAR_GAP, 0.3}, {0.3, -NEAR_GAP, 0.3}, {0.3, -NEAR_GAP, -0.3}};
     const double point[3] = {x, 0, 0};
     const double down[3] = {0, -1, 0};
     double expected = 0.8 / PI_D * stagecheck_polygon_irradiance(corners, 4, point, down, 10);
@@ -167,8 +191,10 @@ check_near_field(double d)
     }
     double se = sqrt(stattest_welford_var_of_mean(&w));
     printf(
-        "%.4g beyond the edge: radiance %.9g +- %.2g, Lambert's formula %.9g (%+.3f%%)\n",
+        "%.4g beyond the edge of a lamp %.4g below: radiance %.9g +- %.2g, Lambert's formula %.9g "
+        "(%+.3f%%)\n",
         d,
+        NEAR_GAP,
         w.mean,
         se,
         expected,
@@ -179,8 +205,8 @@ check_near_field(double d)
 
 TEST(mis_meets_the_closed_form_in_the_near_field)
 {
-    check_near_field(0.0001);
-    check_near_field(0.001);
+    check_near_field(NEAR_GAP / 10);
+    check_near_field(NEAR_GAP);
 }
 
 TEST_MAIN(
