@@ -14,6 +14,7 @@
 
 #include "check.h"
 #include "light.h"
+#include "pathcheck.h"
 #include "rng.h"
 #include "stagecheck.h"
 #include "stattest.h"
@@ -124,7 +125,7 @@ TEST(estimate_matches_lambert_formula)
         const double *n = points[k][1];
         struct hit h = {.p = v3(x), .n = v3(n), .ng = v3(n), .light = -1};
         struct shadow_sampling sampling = {.samples = 1};
-        struct rng rng = rng_make(7103, (uint64_t)k);
+        struct rng rng = rng_make(pathcheck_seed(7103), (uint64_t)k);
         struct stattest_welford e = {0};
         for (int j = 0; j < 200000; j++) {
             vec3 sample = direct_irradiance(&w, &h, &sampling, &rng, &st);
