@@ -291,6 +291,8 @@ TEST(block_stats_hand_computed)
     CHECK(block_stats_of(renders, 2, &ref, &params, &s));
     CHECK_NEAR(s.blocks[0].ref_se[0], 0.25, 1e-12);
     CHECK_NEAR(s.blocks[0].t[0], -0.5 / sqrt(1.0 / 16 + 0.0625), 1e-12);
+    /* The 2x1 corner averages 2 pixels, not 16: sqrt(8) times the SE. */
+    CHECK_NEAR(s.blocks[3].ref_se[0], 0.25 * sqrt(8.0), 1e-12);
     metrics_block_stats_free(&s);
 
     struct diag err = {0};

@@ -284,9 +284,13 @@ test_block(
     struct metrics_block *b)
 {
     block_mean(ref, b, b->ref_mean);
+    /* ref_rel_se is a whole block's: a block the image's edge cuts averages
+     * fewer pixels, so its SE is sqrt(whole / its pixels) times larger. */
+    double whole = (double)params->block_size * (double)params->block_size;
+    double cut = sqrt(fmax(1, whole / ((double)b->w * (double)b->h)));
     for (int c = 0; c < 3; c++) {
         b->ref_se[c] = params->ref_se ? params->ref_se[3 * (size_t)index + (size_t)c]
-                                      : params->ref_rel_se * fabs(b->ref_mean[c]);
+                                      : params->ref_rel_se * fabs(b->ref_mean[c]) * cut;
         test_channel(b, c, dof, params->ref_dof);
     }
 }

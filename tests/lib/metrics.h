@@ -117,9 +117,11 @@ struct metrics_block_params {
     /* The reference's standard error per block and channel (n_blocks * 3,
      * block-major, blocks in row-major order), or NULL to use ref_rel_se. */
     const double *ref_se;
-    /* With ref_se NULL: SE = ref_rel_se * |ref_mean|.  Passing META.json's
-     * per-pixel relative SE (median_rel_se_pixel) overestimates a block's
-     * SE (averaging pixels shrinks it), which errs on the side of
+    /* With ref_se NULL: SE = ref_rel_se * |ref_mean| for a whole block
+     * (block_size^2 pixels), sqrt(block_size^2 / pixels) times that for a
+     * block the image's edge cuts (a window sums its blocks').  Passing
+     * META.json's per-pixel relative SE (median_rel_se_pixel) overestimates
+     * a block's SE (averaging pixels shrinks it), which errs on the side of
      * accepting.  0: the reference is taken as exact. */
     double ref_rel_se;
     /* Degrees of freedom of the reference's SE: batches - 1 (META.json's
