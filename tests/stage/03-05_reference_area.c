@@ -15,12 +15,25 @@
  * limit is 5e-5 rather than 2e-3 (which a 5% error would pass), with 64
  * shadow rays to keep the noise an order of magnitude below it.
  */
+#include <inttypes.h>
+#include <stdio.h>
+
 #include "check.h"
+#include "pathcheck.h"
 #include "stagecheck.h"
 #include "testlib.h"
 
 #define SHADOW_SAMPLES "64"
 #define MAX_RELMSE 5e-5
+
+/* The renders' seed: 3, or PATHCHECK_SEED (make test-seeds). */
+static const char *
+seed_text(void)
+{
+    static char text[32];
+    snprintf(text, sizeof text, "%" PRIu64, pathcheck_seed(3));
+    return text;
+}
 
 TEST(area_light_cornell_matches_mitsuba_on_smooth_pixels)
 {
@@ -29,7 +42,7 @@ TEST(area_light_cornell_matches_mitsuba_on_smooth_pixels)
     const char *stats = NULL;
     const char *scene = test_root_path("scenes/cornell_diffuse_area.scene");
     const char *const args[] =
-        {"-W", "256", "-H", "256", "--seed", "3", "--shadow-samples", SHADOW_SAMPLES, NULL};
+        {"-W", "256", "-H", "256", "--seed", seed_text(), "--shadow-samples", SHADOW_SAMPLES, NULL};
     if (!stagecheck_reference("cornell_diffuse_area_direct", &ref)
         || !stagecheck_render(scene, args, &img, &stats)) {
         CHECK(false);
@@ -64,8 +77,10 @@ TEST(adaptive_matches_full_sampling_at_a_fraction_of_the_rays)
     const char *full_stats = NULL;
     const char *adaptive_stats = NULL;
     const char *scene = test_root_path("scenes/cornell_diffuse_area.scene");
-    const char *const full_args[] = {"-W", "256", "--seed", "3", "--shadow-samples", "144", NULL};
-    const char *const adaptive_args[] = {"-W", "256", "--seed", "3", "--adaptive", "16,128", NULL};
+    const char *const full_args[] =
+        {"-W", "256", "--seed", seed_text(), "--shadow-samples", "144", NULL};
+    const char *const adaptive_args[] =
+        {"-W", "256", "--seed", seed_text(), "--adaptive", "16,128", NULL};
     if (!stagecheck_reference("cornell_diffuse_area_direct", &ref)
         || !stagecheck_render(scene, full_args, &full, &full_stats)
         || !stagecheck_render(scene, adaptive_args, &adaptive, &adaptive_stats)) {
