@@ -24,7 +24,9 @@
 #                 of two fresh renders, judged as grade-page; with a 2%
 #                 bias planted as below too (not in the default list: a set
 #                 costs 35-45 times the others on the point-lit and
-#                 specular boxes)
+#                 specular boxes); each set's outcome is kept in a ledger
+#                 (OUT/grade-auto.sets), so that a later run measures only
+#                 the sets it lacks and the table counts every set kept
 # A verdict is "biased" when compare exits 1.  The same pool, with a bias
 # planted into the renders' images (imgedit --scale: 1%, 2% and 5% in a
 # 32x32 rectangle spread over the image by plant_rect, 0.5% over the whole image), measures
@@ -49,6 +51,8 @@
 #   --size N          image size (default 64; the grade's is 256)
 #   --spp N           samples per pixel of one render (default 64: the grade's)
 #   --sets N          independent sets per verdict (default 200)
+#   --from N          grade-auto: begin at set N (sets N to SETS - 1; the
+#                     ledger's other sets still count; default 0)
 #   --bug-sets N      pairs per planted code bug and scene (default 20)
 #   --scenes LIST     comma-separated reference scenes (default: all)
 #   --verdicts LIST   comma-separated (default: all of those above but
@@ -77,6 +81,7 @@ root=$(cd "$LAB_DIR/../.." && pwd)
 size=64
 spp=64
 sets=200
+from=0
 bug_sets=20
 scenes=
 verdicts=compare-2,compare-4,regions,grade-page,grade,control
@@ -87,7 +92,7 @@ tools=
 render=
 check_plants=0
 append=0
-parse_options "--size size=VALUE --spp spp=VALUE --sets sets=VALUE --bug-sets bug_sets=VALUE
+parse_options "--size size=VALUE --spp spp=VALUE --sets sets=VALUE --from from=VALUE --bug-sets bug_sets=VALUE
     --scenes scenes=VALUE --verdicts verdicts=VALUE --seed-offsets seed_offsets=VALUE
     --out out=VALUE --threads threads=VALUE --tools tools=DIR --render render=VALUE
     --check-plants check_plants=1 --append append=1" "$@"
@@ -116,9 +121,10 @@ if [ "$check_plants" = 1 ]; then
     exit 0
 fi
 scenes=$(echo "$scenes" | tr ',' ' ')
-for n in "$size" "$spp" "$sets" "$bug_sets" "$seed_offsets" "$threads"; do
+for n in "$size" "$spp" "$sets" "$from" "$bug_sets" "$seed_offsets" "$threads"; do
     case $n in '' | *[!0-9]*) usage_error "expected a whole number, got '$n'" ;; esac
 done
+[ "$from" -eq 0 ] || [ "$verdicts" = grade-auto ] || usage_error "--from is for --verdicts grade-auto alone"
 [ $((256 % size)) -eq 0 ] || usage_error "--size must divide 256 (the references' size), got $size"
 
 build=$root/build
@@ -214,6 +220,7 @@ pool_renders() {
 
 # seconds_per_render DIR: the mean processor seconds of DIR's renders.
 seconds_per_render() {
+    [ -f "$1/seconds" ] || { echo 0; return 0; }
     awk '{ s += $1; n++ } END { printf "%.4g", n ? s / n : 0 }' "$1/seconds"
 }
 
@@ -281,6 +288,33 @@ planted() {
 
 count1() { awk '$1 == 1 { n++ } END { print n + 0 }' "$1"; }
 
+# ---- grade-auto's ledger ----------------------------------------------------
+# A set of grade-auto costs minutes (its renders have thousands of spp), so
+# its outcome is kept, one line a set, in OUT/grade-auto.sets:
+#   SCENE KEY SET FALSE_ALARM FOUND_2% SPP PROCESSOR_SECONDS
+# A run measures only the sets the ledger lacks, and the table counts every
+# set the ledger holds under the run's key: a measurement too long for one
+# session grows over several.  KEY is a checksum of what decides a set's
+# outcome: the sources of stage 07, common/ and compare (tests/tools,
+# tests/lib), lablib.sh (spp_for_power, page_alpha), this script (seeds,
+# rectangles), the scene, its reference and mask, the size and the spp.
+# The lines of another key (measured before the code changed) are not
+# counted.  (The compiler is not in the key: CI and a course's machines
+# build with Debian's gcc.)
+ledger=$out/grade-auto.sets
+source_sum=$(cd "$root" && cat stages/07_pathtrace/*.[ch] common/*.[ch] tests/tools/compare.c \
+    tests/lib/*.[ch] tests/lab/lablib.sh tests/calibrate/calibrate.sh | cksum | cut -d' ' -f1)
+# ledger_key SCENE
+ledger_key() {
+    echo "$source_sum-$(cat "$root/scenes/$1.scene" "$refs/${1}_gi.pfm" "$refs/$1.feature.pfm" |
+        cksum | cut -d' ' -f1)-$size-$spp"
+}
+# ledger_has SCENE KEY SET: whether the ledger holds that set.
+ledger_has() {
+    [ -f "$ledger" ] && awk -v s="$1" -v k="$2" -v i="$3" '
+        $1 == s && $2 == k && $3 == i { found = 1 } END { exit !found }' "$ledger"
+}
+
 make_refs
 echo "calibrate: ${size}x$size, $spp spp, $sets sets per verdict; pool $pool"
 grade_tmp=$work/grade
@@ -291,25 +325,24 @@ for scene in $scenes; do
     need=$((2 * sets))
     # compare-4's sets are four renders each: the pool holds 4 * sets.
     ! has_verdict compare-4 || need=$((4 * sets))
+    # grade-auto alone renders the pilots of the sets its ledger lacks, in the loop.
+    [ "$verdicts" != grade-auto ] || need=0
     start=$(date +%s)
     pool_renders "$render" "$dir" "$scene" "$spp" "$BASE" "$need"
     sec=$(seconds_per_render "$dir")
     echo "  $scene: $need renders ready ($(($(date +%s) - start)) s now; $sec processor s each)"
-    for v in compare-2 regions grade-page control grade-auto; do
+    for v in compare-2 regions grade-page control; do
         has_verdict "$v" || continue
         : >"$work/$v"
     done
     : >"$work/compare-4"
-    : >"$work/ga.region2"
-    : >"$work/ga.spp"
-    : >"$work/ga.seconds"
-    auto_renders=0
     for b in region1 region2 region5 whole0.5; do
         : >"$work/c2.$b"
         : >"$work/gp.$b"
     done
-    i=0
+    i=$from
     ctl_renders=0
+    lkey=$(ledger_key "$scene")
     while [ "$i" -lt "$sets" ]; do
         r1=$dir/$((BASE + 2 * i)).pfm
         r2=$dir/$((BASE + 2 * i + 1)).pfm
@@ -339,8 +372,9 @@ for scene in $scenes; do
                 "$dir/$((BASE + 4 * i + 2)).pfm" "$dir/$((BASE + 4 * i + 3)).pfm" "$ref"
         fi
         rect=$(plant_rect "$i")
-        if has_verdict grade-auto; then
+        if has_verdict grade-auto && ! ledger_has "$scene" "$lkey" "$i"; then
             # The pilot is the set's pair; the spp it asks for, a pair of its own.
+            pool_renders "$render" "$dir" "$scene" "$spp" $((BASE + 2 * i)) 2
             "$compare" -q --alpha "$page_alpha" "$r1" "$r2" "$ref" >"$work/pilot" 2>&1 || [ $? -eq 1 ] ||
                 die "compare failed on a pilot: $(cat "$work/pilot")"
             spp_for_power "$work/pilot" "$spp" "$GRADE_MAX_SPP" || die "no power line: $(cat "$work/pilot")"
@@ -348,14 +382,17 @@ for scene in $scenes; do
                 a=$dir/auto/$sfp_spp/$((3 * BASE + 2 * i + j)).pfm
                 [ -f "$a" ] || { mkdir -p "$dir/auto/$sfp_spp"; render_one "$render" "$scene" "$sfp_spp" $((3 * BASE + 2 * i + j)) "$a"; }
                 eval "a$j=\$a"
-                echo "$(seconds_per_render "$dir/auto/$sfp_spp")" >>"$work/ga.seconds"
             done
-            auto_renders=$((auto_renders + 2))
-            echo "$sfp_spp" >>"$work/ga.spp"
-            judge "$work/grade-auto" --alpha "$page_alpha" --regions "$mask" "$a1" "$a2" "$ref"
+            : >"$work/ga.set"
+            judge "$work/ga.set" --alpha "$page_alpha" --regions "$mask" "$a1" "$a2" "$ref"
             planted "$i" 1.02 "$rect" "$a1" "$a2"
-            judge "$work/ga.region2" --alpha "$page_alpha" --regions "$mask" "$work/p.1.pfm" "$work/p.2.pfm" "$ref"
+            judge "$work/ga.set" --alpha "$page_alpha" --regions "$mask" "$work/p.1.pfm" "$work/p.2.pfm" "$ref"
+            # Processor seconds: the pilot's renders and the two it asked for.
+            set_sec=$(awk -v p="$(seconds_per_render "$dir")" -v a="$(seconds_per_render "$dir/auto/$sfp_spp")" \
+                'BEGIN { printf "%.1f", 2 * p + 2 * a }')
+            echo "$scene $lkey $i $(tr '\n' ' ' <"$work/ga.set")$sfp_spp $set_sec" >>"$ledger"
         fi
+        has_verdict compare-2 || has_verdict grade-page || { i=$((i + 1)); continue; }
         for b in region1 region2 region5 whole0.5; do
             case $b in
                 region1) planted "$i" 1.01 "$rect" "$r1" "$r2" ;;
@@ -382,11 +419,17 @@ for scene in $scenes; do
             "$(awk -v n="$sets" -v p="$pair" -v x="$ctl_sec" 'BEGIN { print n * p + x }')"
     fi
     if has_verdict grade-auto; then
-        # Processor seconds: the pilots' and the renders the pilots asked for.
-        ga_sec=$(awk -v p="$pair" -v s="$sets" '{ t += $1 } END { print s * p + t }' "$work/ga.seconds")
-        echo "  $scene: grade-auto's spp: $(sort -n "$work/ga.spp" | awk '{ v[++n] = $1 } END { print "min " v[1] ", median " v[int((n + 1) / 2)] ", max " v[n] }')"
-        tally grade-auto "$scene" none 0 "$sets" "$(count1 "$work/grade-auto")" $((2 * sets + auto_renders)) "$ga_sec"
-        tally grade-auto "$scene" region2 2 "$sets" "$(count1 "$work/ga.region2")" $((2 * sets + auto_renders)) "$ga_sec"
+        # Every set of the ledger under this key, each once.
+        awk -v s="$scene" -v k="$lkey" '$1 == s && $2 == k && !seen[$3]++' "$ledger" >"$work/ga.sets"
+        read -r ga_n ga_fa ga_found ga_sec <<EOF_GA
+$(awk '{ n++; fa += $4; f += $5; t += $7 } END { print n + 0, fa + 0, f + 0, t + 0 }' "$work/ga.sets")
+EOF_GA
+        if [ "$ga_n" -gt 0 ]; then
+            echo "  $scene: grade-auto: $ga_n sets in the ledger; their spp: $(awk '{ print $6 }' "$work/ga.sets" |
+                sort -n | awk '{ v[++n] = $1 } END { print "min " v[1] ", median " v[int((n + 1) / 2)] ", max " v[n] }')"
+            tally grade-auto "$scene" none 0 "$ga_n" "$ga_fa" $((4 * ga_n)) "$ga_sec"
+            tally grade-auto "$scene" region2 2 "$ga_n" "$ga_found" $((4 * ga_n)) "$ga_sec"
+        fi
     fi
     ! has_verdict compare-4 || tally compare-4 "$scene" none 0 "$sets" "$(count1 "$work/compare-4")" \
         $((4 * sets)) "$(awk -v n="$sets" -v p="$pair" 'BEGIN { print 2 * n * p }')"
