@@ -159,9 +159,13 @@ page() {
 noise_pages() {
     alpha=$(page_alpha "$1")
     np_spp="$spp spp"
-    [ "$spp" != auto ] || np_spp="the spp its pilot asks for"
+    np_doc=docs/calibration/README.md
+    if [ "$spp" = auto ]; then
+        np_spp="the spp its pilot asks for"
+        np_doc=docs/calibration/auto-256/README.md
+    fi
     echo "    (each page below: two renders of $np_spp, tested at alpha $alpha, so that correct work is called biased on"
-    echo "    any of its $1 page(s) in at most 1 grade in 100: docs/calibration/README.md)"
+    echo "    any of its $1 page(s) in at most 1 grade in 100; measured: $np_doc)"
 }
 
 case $nn in

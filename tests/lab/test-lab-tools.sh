@@ -585,6 +585,7 @@ test_grade_pages() {
             grep -q "feature pass tests/reference/" "$T/out" &&
             { [ "$gp_stage" != 06_supersample ] ||
                 { grep -q "two renders of 16 spp" "$T/out" &&
+                    grep -q "; measured: docs/calibration/README.md)$" "$T/out" &&
                     grep -q "^        power: a bias that brightens or darkens a 32x32 window by" "$T/out"; }; } &&
             ! grep -q -e "$root/tests/reference" -e "grade-pages\." "$T/out"; then
             ok "grade-pages/$gp_stage"
@@ -596,6 +597,8 @@ test_grade_pages() {
     # finds 2% on lab 06's page, so its renders keep the pilot's spp.
     if "$LAB_DIR/grade-pages.sh" --spp auto "$root" 06_supersample "$T/pages/auto" >"$T/out" 2>&1 &&
         grep -q "two renders of the spp its pilot asks for" "$T/out" &&
+        grep -q "; measured: docs/calibration/auto-256/README.md)$" "$T/out" &&
+        [ -f "$root/docs/calibration/auto-256/README.md" ] &&
         grep -q "^    cornell_diffuse_point_direct: 64 spp a render (its pilot, two renders of 64 spp: finds 2% in 9 windows of 10 already)$" "$T/out" &&
         grep -q "^    cornell_diffuse_point_direct: consistent with the reference" "$T/out" &&
         [ "$(ls "$T/pages/auto"/*.html | wc -l)" -eq 1 ]; then
