@@ -161,13 +161,13 @@ grade:
 # whole class graded (locally or as a Slurm job array), a render split over
 # a Slurm cluster.
 autograder:
-	@if [ -z "$(STAGE)" ] || [ -z "$(OUT)" ]; then echo "usage: make autograder STAGE=05 OUT=path" >&2; exit 2; fi
-	@tests/course/autograder.sh "$(STAGE)" "$(OUT)"
+	@if [ -z "$(STAGE)" ] || [ -z "$(OUT)" ]; then echo "usage: make autograder STAGE=05 OUT=path [SPP=N|auto]" >&2; exit 2; fi
+	@tests/course/autograder.sh $(if $(SPP),--spp "$(SPP)") "$(STAGE)" "$(OUT)"
 
 grade-class:
-	@if [ -z "$(SUBMISSIONS)" ]; then echo "usage: make grade-class SUBMISSIONS=dir [STAGE=05] [OUT=dir] [SCHEDULER=local|slurm] [JOBS=N]" >&2; exit 2; fi
+	@if [ -z "$(SUBMISSIONS)" ]; then echo "usage: make grade-class SUBMISSIONS=dir [STAGE=05] [OUT=dir] [SCHEDULER=local|slurm] [JOBS=N] [SPP=N|auto]" >&2; exit 2; fi
 	@tests/course/grade-class.sh $(if $(STAGE),--stage "$(STAGE)") $(if $(OUT),--out "$(OUT)") \
-		$(if $(SCHEDULER),--scheduler "$(SCHEDULER)") $(if $(JOBS),--jobs "$(JOBS)") "$(SUBMISSIONS)"
+		$(if $(SCHEDULER),--scheduler "$(SCHEDULER)") $(if $(JOBS),--jobs "$(JOBS)") $(if $(SPP),--spp "$(SPP)") "$(SUBMISSIONS)"
 
 farm-render: all
 	@if [ -z "$(SCENE)" ] || [ -z "$(SPP)" ] || [ -z "$(TASKS)" ]; then echo "usage: make farm-render SCENE=file SPP=N TASKS=N [STAGE=07] [OUT=dir]" >&2; exit 2; fi
@@ -216,7 +216,7 @@ help:
 	'make unseen           every stage on random scenes at random scales; the path tracers against Mitsuba 3' \
 	'make docs-images      the lessons'"'"' pictures (docs/images/)' \
 	'make lab STAGE=NN OUT=dir   a lab handout (SOLUTION=1 the instructor'"'"'s; FORCE=1 moves a changed one aside)' \
-	'make grade LAB=dir    build a handout, run its tests, score them (SPP=N or auto: the report pages'"'"' samples)' \
+	'make grade LAB=dir    build a handout, run its tests, score them (SPP=auto, the default, or N: the report pages'"'"' samples)' \
 	'make autograder STAGE=NN OUT=dir   the Gradescope autograder of a lab (OUT/autograder.zip)' \
 	'make grade-class SUBMISSIONS=dir   grade every submission: a CSV and an HTML summary (SCHEDULER=slurm: a job array)' \
 	'make farm-render SCENE=f SPP=N TASKS=N   one render split over N Slurm tasks by seed, merged' \

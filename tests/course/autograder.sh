@@ -27,6 +27,10 @@
 #
 # Options:
 #   --timeout SEC  time limit of one test program (default 300)
+#   --spp N|auto   samples per pixel of the report pages' renders (grade.sh
+#                  --spp; default auto, as make grade's: a lab-07 grade's
+#                  three pages take about 15 processor minutes; 64: under
+#                  one, finding less; tests/course/README.md)
 #   --root DIR     the project (default: this script's)
 #   --help
 # Exit status: 0 written, 1 error, 2 usage.
@@ -39,10 +43,12 @@ LAB_DIR=$COURSE_DIR/../lab
 
 root=$(cd "$COURSE_DIR/../.." && pwd)
 limit=300
-parse_options '--timeout limit=VALUE --root root=DIR' "$@"
+spp=auto
+parse_options '--timeout limit=VALUE --spp spp=VALUE --root root=DIR' "$@"
 shift "$po_used"
 [ $# -eq 2 ] || usage_error "expected STAGE and OUT, got $# argument(s)"
 case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
+check_spp "$spp" auto
 stage=$(resolve_stage "$root" "$1")
 out=$2
 command -v python3 >/dev/null 2>&1 || die "python3 is needed to write the zip (it is in .devcontainer/packages)"
@@ -72,7 +78,7 @@ else
     rm -rf "$dest/handout/build" "$dest/handout/grade"
 fi
 sed -e "s/@STAGE@/$stage/g" "$COURSE_DIR/setup.sh.in" >"$dest/setup.sh"
-sed -e "s/@STAGE@/$stage/g" -e "s/@TIMEOUT@/$limit/g" "$COURSE_DIR/run_autograder.in" >"$dest/run_autograder"
+sed -e "s/@STAGE@/$stage/g" -e "s/@TIMEOUT@/$limit/g" -e "s/@SPP@/$spp/g" "$COURSE_DIR/run_autograder.in" >"$dest/run_autograder"
 chmod +x "$dest/setup.sh" "$dest/run_autograder"
 
 # The zip: setup.sh and run_autograder at its top, as Gradescope wants them

@@ -27,6 +27,9 @@
 #   class-summary  class.awk on fixture results: the CSV's header and rows
 #                  (a comma in a reason quoted), the HTML's histogram, most
 #                  failed test and links
+#   spp-option     autograder.sh and grade-class.sh take --spp N|auto for
+#                  the report pages and refuse anything else before they
+#                  write a thing (test-slurm.sh checks the default, auto)
 #   timeout        with-timeout.sh's shell watchdog (WITH_TIMEOUT=posix, as
 #                  without timeout(1)): 124 for a command past its limit,
 #                  the command's own status otherwise, nothing left behind
@@ -190,6 +193,20 @@ grep -q '<td>90-100%</td><td class="n">1</td>' "$T/class/index.html" || why="$wh
 grep -q '<tr><td>02_shadows/a</td><td class="n">1 of 2</td></tr>' "$T/class/index.html" || why="$why most failed;"
 grep -q 'href="students/ann/pages/cornell.html"' "$T/class/index.html" || why="$why no link to ann's page;"
 if [ -z "$why" ]; then ok "class-summary: the CSV's rows, the histogram, the tests most failed, the links"; else fail class-summary "$why" "$(cat "$T/class/grades.csv")"; fi
+
+# ---- spp-option ----------------------------------------------------------------------
+why=
+for c in autograder.sh grade-class.sh; do
+    case $c in autograder.sh) args="02 $T/spp-out" ;; *) args=$T/spp-subs ;; esac
+    st=0
+    # shellcheck disable=SC2086 # the arguments are words
+    "$COURSE_DIR/$c" --spp 0x $args >"$T/spp.log" 2>&1 || st=$?
+    [ "$st" -eq 2 ] && grep -q "spp needs a positive number or auto, got '0x'" "$T/spp.log" ||
+        why="$why $c --spp 0x: exit $st, $(cat "$T/spp.log");"
+done
+[ ! -e "$T/spp-out" ] || why="$why autograder.sh wrote $T/spp-out before refusing;"
+grep -q -- '--spp @SPP@ ' "$COURSE_DIR/run_autograder.in" || why="$why run_autograder does not pass --spp to grade.sh;"
+if [ -z "$why" ]; then ok "spp-option: --spp N|auto checked before anything is written, passed on to grade.sh"; else fail spp-option "$why"; fi
 
 # ---- timeout -------------------------------------------------------------------------
 W=$root/tests/harness/with-timeout.sh

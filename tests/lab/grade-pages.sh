@@ -10,14 +10,14 @@
 # OUT/NAME.html (the render, the reference, the error map, the numbers and
 # the verdict; how to read it: the handout's LAB.md, "Reading the report
 # pages").  Prints for each page its verdict, what its tests can find
-# (compare's power line, pages with block tests), its regions and its path.  --spp N: the
-# samples per pixel of each render of the noise-tested pages (default
-# lablib.sh's GRADE_DEFAULT_SPP; make grade LAB=dir SPP=N).  --spp auto:
-# for each noise-tested page, as many as its test needs to find a 2% bias
-# in 9 of 10 32x32 windows 9 times in 10 (compare's power line on a pilot
-# of two renders of GRADE_DEFAULT_SPP, with seeds of their own, not
-# judged), at least the pilot's and at most --max-spp (default
-# GRADE_MAX_SPP); make grade LAB=dir SPP=auto.
+# (compare's power line, pages with block tests), its regions and its
+# path.  --spp auto (the default, as make grade's): for each noise-tested
+# page, as many samples per pixel as its test needs to find a 2% bias in 9
+# of 10 32x32 windows 9 times in 10 (compare's power line on a pilot of two
+# renders of GRADE_DEFAULT_SPP, with seeds of their own, not judged), at
+# least the pilot's and at most --max-spp (default GRADE_MAX_SPP).
+# --spp N: N for each render of the noise-tested pages (make grade LAB=dir
+# SPP=N), quicker, and finding less (docs/calibration/README.md).
 #
 # What is compared, as the stage's own tests do it:
 #   stages 02-05  cornell_diffuse_point_direct: one render, the reference's
@@ -46,7 +46,7 @@ PROG=grade-pages.sh
 LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 . "$LAB_DIR/lablib.sh"
 
-spp=$GRADE_DEFAULT_SPP
+spp=auto
 max_spp=$GRADE_MAX_SPP
 parse_options '--spp spp=VALUE --max-spp max_spp=VALUE' "$@"
 shift "$po_used"
@@ -165,7 +165,7 @@ noise_pages() {
         np_doc=docs/calibration/auto-256/README.md
     fi
     echo "    (each page below: two renders of $np_spp, tested at alpha $alpha, so that correct work is called biased on"
-    echo "    any of its $1 page(s) in at most 1 grade in 100; measured: $np_doc)"
+    echo "    any of its $1 page(s) in at most 1 grade in 100 by design; measured: $np_doc)"
 }
 
 case $nn in

@@ -36,9 +36,10 @@
 #                  compare page per reference render (grade-pages.sh)
 #   --no-pages     write no report pages
 #   --spp N|auto   samples per pixel of the pages' renders (grade-pages.sh;
-#                  default lablib.sh's GRADE_DEFAULT_SPP); auto: as many as
-#                  each page needs to find a 2% bias in a 32x32 window
-#                  (from a pilot), up to GRADE_MAX_SPP
+#                  default auto: as many as each page needs to find a 2%
+#                  bias in a 32x32 window, from a pilot of GRADE_DEFAULT_SPP,
+#                  up to GRADE_MAX_SPP; N, e.g. 64, for a quicker look that
+#                  finds less: docs/calibration/README.md)
 #   --keep DIR     keep what the grading read in DIR: its records, the
 #                  test programs' logs (NAME.log), the build's (build.log),
 #                  and how each TEST() counted (tests: grade.awk's tests=)
@@ -63,7 +64,7 @@ pristine=0
 lab_only=0
 pages=
 no_pages=0
-spp=$GRADE_DEFAULT_SPP
+spp=auto
 controls=
 save_controls=
 keep=

@@ -593,18 +593,19 @@ test_grade_pages() {
             fail "grade-pages/$gp_stage" "$gp_pages pages, $gp_images images" "$(cat "$T/out")"
         fi
     done
-    # --spp auto: a pilot of two 64-spp renders, whose power line already
-    # finds 2% on lab 06's page, so its renders keep the pilot's spp.
-    if "$LAB_DIR/grade-pages.sh" --spp auto "$root" 06_supersample "$T/pages/auto" >"$T/out" 2>&1 &&
+    # No --spp: auto, as make grade's default: a pilot of two 64-spp
+    # renders, whose power line already finds 2% on lab 06's page, so its
+    # renders keep the pilot's spp.
+    if "$LAB_DIR/grade-pages.sh" "$root" 06_supersample "$T/pages/auto" >"$T/out" 2>&1 &&
         grep -q "two renders of the spp its pilot asks for" "$T/out" &&
-        grep -q "; measured: docs/calibration/auto-256/README.md)$" "$T/out" &&
+        grep -q "1 grade in 100 by design; measured: docs/calibration/auto-256/README.md)$" "$T/out" &&
         [ -f "$root/docs/calibration/auto-256/README.md" ] &&
         grep -q "^    cornell_diffuse_point_direct: 64 spp a render (its pilot, two renders of 64 spp: finds 2% in 9 windows of 10 already)$" "$T/out" &&
         grep -q "^    cornell_diffuse_point_direct: consistent with the reference" "$T/out" &&
         [ "$(ls "$T/pages/auto"/*.html | wc -l)" -eq 1 ]; then
-        ok grade-pages/spp-auto
+        ok grade-pages/spp-auto-by-default
     else
-        fail grade-pages/spp-auto "$(cat "$T/out")"
+        fail grade-pages/spp-auto-by-default "$(cat "$T/out")"
     fi
     expect_exit grade-pages/spp-auto-or-number 2 "spp needs a positive number or auto, got 'x'" \
         "$LAB_DIR/grade-pages.sh" --spp x "$root" 06_supersample "$T/pages/none"
