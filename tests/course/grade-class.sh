@@ -50,7 +50,7 @@
 #   --timeout SEC      time limit of one test program (default 300); a whole
 #                      grading is stopped after 10 times that
 #   --spp N|auto       samples per pixel of the report pages' renders
-#                      (autograder.sh --spp; default auto)
+#                      (autograder.sh --spp; default its default, auto)
 #   --root DIR         the project (default: this script's)
 #   --task N           (internal) grade the Nth submission of OUT/tasks
 #   --help
@@ -70,7 +70,7 @@ scheduler=local
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
 sbatch_options="--cpus-per-task=1 --mem=2G --time=60"
 limit=300
-spp=auto
+spp=
 task=
 parse_options '--stage stage=VALUE --out out=VALUE --scheduler scheduler=VALUE --jobs jobs=VALUE
     --sbatch sbatch_options=VALUE --timeout limit=VALUE --spp spp=VALUE --root root=DIR --task task=VALUE' "$@"
@@ -79,7 +79,7 @@ shift "$po_used"
 case $scheduler in local | slurm) ;; *) usage_error "--scheduler is local or slurm, got '$scheduler'" ;; esac
 case $jobs in '' | *[!0-9]* | 0) usage_error "--jobs needs a positive number, got '$jobs'" ;; esac
 case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
-check_spp "$spp" auto
+[ -z "$spp" ] || check_spp "$spp" auto
 subs=$(abs_dir "$1")
 [ -n "$out" ] || out=$root/build/grade-class
 mkdir -p "$out/students" || die "cannot write $out"
@@ -167,7 +167,7 @@ if [ -z "$stage" ]; then
 fi
 stage=$(resolve_stage "$root" "$stage")
 echo "$stage" >"$out/stage"
-"$COURSE_DIR/autograder.sh" --root "$root" --timeout "$limit" --spp "$spp" "$stage" "$out" >"$out/autograder.log" 2>&1 ||
+"$COURSE_DIR/autograder.sh" --root "$root" --timeout "$limit" ${spp:+--spp "$spp"} "$stage" "$out" >"$out/autograder.log" 2>&1 ||
     die "could not write the autograder of $stage (log: $out/autograder.log)"
 cp "$out/autograder/controls" "$out/controls"
 # The common core and the test support built once, for every copy.

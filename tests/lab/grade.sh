@@ -36,10 +36,11 @@
 #                  compare page per reference render (grade-pages.sh)
 #   --no-pages     write no report pages
 #   --spp N|auto   samples per pixel of the pages' renders (grade-pages.sh;
-#                  default auto: as many as each page needs to find a 2%
-#                  bias in a 32x32 window, from a pilot of GRADE_DEFAULT_SPP,
-#                  up to GRADE_MAX_SPP; N, e.g. 64, for a quicker look that
-#                  finds less: docs/calibration/README.md)
+#                  default grade-pages.sh's, auto: as many as each page
+#                  needs to find a 2% bias in a 32x32 window, from a pilot
+#                  of GRADE_DEFAULT_SPP, up to GRADE_MAX_SPP; N, e.g. 64,
+#                  for a quicker look that finds less:
+#                  docs/calibration/README.md)
 #   --keep DIR     keep what the grading read in DIR: its records, the
 #                  test programs' logs (NAME.log), the build's (build.log),
 #                  and how each TEST() counted (tests: grade.awk's tests=)
@@ -64,7 +65,7 @@ pristine=0
 lab_only=0
 pages=
 no_pages=0
-spp=auto
+spp=
 controls=
 save_controls=
 keep=
@@ -75,7 +76,7 @@ parse_options '--pristine pristine=1 --lab-only lab_only=1 --no-pages no_pages=1
 shift "$po_used"
 [ $# -eq 1 ] || usage_error "expected one handout directory, got $# argument(s)"
 case $limit in '' | *[!0-9]*) usage_error "--timeout needs a number of seconds, got '$limit'" ;; esac
-check_spp "$spp" auto
+[ -z "$spp" ] || check_spp "$spp" auto
 case $jobs in '' | *[!0-9]*) usage_error "--jobs needs a number, got '$jobs'" ;; esac
 [ -d "$1" ] || die "no such directory: $1"
 [ -z "$controls" ] || [ -f "$controls" ] || die "no such file: $controls"
@@ -171,7 +172,7 @@ done
 
 if [ "$build" != failed ] && [ "$no_pages" -eq 0 ]; then
     echo "report pages (how to read them: LAB.md, \"Reading the report pages\"):"
-    "$LAB_DIR/grade-pages.sh" --spp "$spp" "$dir" "$stage" "${pages:-$lab/grade}" || echo "note: some pages could not be written"
+    "$LAB_DIR/grade-pages.sh" ${spp:+--spp "$spp"} "$dir" "$stage" "${pages:-$lab/grade}" || echo "note: some pages could not be written"
 fi
 
 if [ -n "$keep" ]; then
