@@ -15,7 +15,11 @@
 # non-fiction, Brysbaert 2019) with code at 10 lines a minute (600 lines an
 # hour, a first careful read), and a slower one, prose at 200 and code at
 # 5 lines a minute (300 an hour, the middle of the 200-400 lines an hour
-# that code review studies find effective).  Prints a markdown table.
+# that code review studies find effective).  For a diff, a last column
+# gives the brisk minutes for what it adds alone: the time of a learner who
+# only glances at the lines it removes, having read them in the stage
+# before (a lower bound; the brisk column is the upper).  Prints a
+# markdown table.
 # Exit status: 0, 2 usage.
 set -eu
 
@@ -59,8 +63,8 @@ minutes() {
     awk -v w="$1" -v c="$2" -v pr="$3" -v cr="$4" 'BEGIN { printf "%.0f", w / pr + c / cr }'
 }
 
-echo "| what | prose words (page + comments) | code lines | minutes (238 wpm, 10 lines/min) | minutes (200 wpm, 5 lines/min) |"
-echo "|---|--:|--:|--:|--:|"
+echo "| what | prose words (page + comments) | code lines | minutes (238 wpm, 10 lines/min) | minutes (200 wpm, 5 lines/min) | minutes for the added lines alone (238 wpm, 10 lines/min) |"
+echo "|---|--:|--:|--:|--:|--:|"
 prev=
 for dir in "$root"/stages/[0-9][0-9]_*; do
     name=${dir##*/}
@@ -70,6 +74,7 @@ for dir in "$root"/stages/[0-9][0-9]_*; do
         code=$1
         words=$(($2 + $([ -n "$page" ] && page_words "$page" || echo 0)))
         what="$name: lesson page and code"
+        added=$(minutes "$words" "$code" 238 10)
     else
         diff=$(diff -ruN "$prev" "$dir" || true)
         set -- $(printf '%s\n' "$diff" | sed -n 's/^+\([^+]\)/\1/p; s/^+$//p' | c_counts) \
@@ -77,7 +82,8 @@ for dir in "$root"/stages/[0-9][0-9]_*; do
         code=$(($1 + $3))
         words=$(($2 + $4))
         what="${prev##*/} → $name: the diff"
+        added=$(minutes "$2" "$1" 238 10)
     fi
-    echo "| $what | $words | $code | $(minutes "$words" "$code" 238 10) | $(minutes "$words" "$code" 200 5) |"
+    echo "| $what | $words | $code | $(minutes "$words" "$code" 238 10) | $(minutes "$words" "$code" 200 5) | $added |"
     prev=$dir
 done

@@ -364,14 +364,27 @@ EOF
 
 # reading-time.sh counts the lesson's words, comment words (a comment
 # line's "*" not one) and code lines of stage 01, then of each diff, the
-# lines it removes included (their comments as words, not code lines).
+# lines it removes included (their comments as words, not code lines);
+# its last column counts what a diff adds alone.
 test_reading_time() {
     check reading-time/runs "$LAB_DIR/reading-time.sh" --root "$M"
-    if grep -qF '| 01_a: lesson page and code | 11 | 1 |' "$T/out" &&
-        grep -qF '| 01_a → 02_b: the diff | 14 | 7 |' "$T/out"; then
+    if grep -qF '| 01_a: lesson page and code | 11 | 1 | 0 | 0 | 0 |' "$T/out" &&
+        grep -qF '| 01_a → 02_b: the diff | 14 | 7 | 1 | 1 | 1 |' "$T/out"; then
         ok reading-time/counts
     else
         fail reading-time/counts "$(cat "$T/out")"
+    fi
+    # A diff that removes 40 code lines and adds 10: 5 minutes read whole
+    # (10 at the slow pace), 1 for the added lines alone.
+    R=$T/rt
+    mkdir -p "$R/stages/01_a" "$R/stages/02_b"
+    seq 40 | sed 's/.*/int a&;/' >"$R/stages/01_a/x.c"
+    seq 10 | sed 's/.*/int b&;/' >"$R/stages/02_b/x.c"
+    check reading-time/runs-removal "$LAB_DIR/reading-time.sh" --root "$R"
+    if grep -qF '| 01_a → 02_b: the diff | 0 | 50 | 5 | 10 | 1 |' "$T/out"; then
+        ok reading-time/added-alone
+    else
+        fail reading-time/added-alone "$(cat "$T/out")"
     fi
 }
 
