@@ -74,7 +74,7 @@ for dir in "$root"/stages/[0-9][0-9]_*; do
         code=$1
         words=$(($2 + $([ -n "$page" ] && page_words "$page" || echo 0)))
         what="$name: lesson page and code"
-        added=$(minutes "$words" "$code" 238 10)
+        added=
     else
         diff=$(diff -ruN "$prev" "$dir" || true)
         set -- $(printf '%s\n' "$diff" | sed -n 's/^+\([^+]\)/\1/p; s/^+$//p' | c_counts) \
@@ -84,6 +84,7 @@ for dir in "$root"/stages/[0-9][0-9]_*; do
         what="${prev##*/} → $name: the diff"
         added=$(minutes "$2" "$1" 238 10)
     fi
-    echo "| $what | $words | $code | $(minutes "$words" "$code" 238 10) | $(minutes "$words" "$code" 200 5) | $added |"
+    brisk=$(minutes "$words" "$code" 238 10)
+    echo "| $what | $words | $code | $brisk | $(minutes "$words" "$code" 200 5) | ${added:-$brisk} |"
     prev=$dir
 done
