@@ -45,6 +45,16 @@ static struct check_state check_current;
         } \
     } while (0)
 
+/* A failed check that is all explanation: the function tests' messages
+ * (tests/stage/NN_lab_functions.c), which a student reads. */
+#define CHECK_FAIL(...) \
+    do { \
+        printf("%s:%d: check failed: ", __FILE__, __LINE__); \
+        printf(__VA_ARGS__); \
+        printf("\n"); \
+        check_current.failed_checks++; \
+    } while (0)
+
 /* |a - b| <= tol, with both values printed on failure; NaN always fails. */
 #define CHECK_NEAR(a, b, tol) \
     do { \
