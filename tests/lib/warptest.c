@@ -88,6 +88,13 @@ warptest_add(struct warptest *w, double x, double y, double z)
 
 /* The density's integral over cell (row, col): a midpoint rule on
  * sub-cells.  Directions: dw = dz dphi over the bands of z. */
+/* The uniform density of the domain (warptest_fit's pdf NULL). */
+static double
+uniform_pdf(const struct warptest *w)
+{
+    return w->directions ? 1 / ((1 - z_min(w)) * 2 * pi) : 1;
+}
+
 static double
 cell_integral(const struct warptest *w, int row, int col, warptest_pdf pdf, const void *ctx)
 {
@@ -97,7 +104,9 @@ cell_integral(const struct warptest *w, int row, int col, warptest_pdf pdf, cons
         for (int j = 0; j < k; j++) {
             double a = (row + (i + 0.5) / k) / w->rows;
             double b = (col + (j + 0.5) / k) / w->cols;
-            if (w->directions) {
+            if (!pdf) {
+                sum += uniform_pdf(w);
+            } else if (w->directions) {
                 double z = z_min(w) + a * (1 - z_min(w));
                 double phi = 2 * pi * b;
                 double s = sqrt(fmax(0, 1 - z * z));

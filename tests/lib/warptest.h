@@ -57,7 +57,7 @@ struct warptest_result {
     double worst_observed, worst_expected;
 };
 
-/* Pearson's test of the counts against pdf. */
+/* Pearson's test of the counts against pdf (NULL: uniform over the domain). */
 struct warptest_result warptest_fit(const struct warptest *w, warptest_pdf pdf, const void *ctx);
 
 /* One line that says where the samples disagree with the density most:
