@@ -166,8 +166,17 @@ for src in $(handout_tests "$dir"); do
     [ "$lab_only" -eq 0 ] || [ "$from" = "$nn" ] || continue
     set -- $(run_handout_test "$dir" "$src" "$work/$name.log" "$limit")
     printf 'P\t%s\t%s\t%s\n' "$from" "$name" "$5" >>"$work/records"
-    test_statuses "$src" "$work/$name.log" "$5" |
-        awk -v from="$from" -v name="$name" '{ printf "T\t%s\t%s\t%s\t%s\n", from, name, $1, $2 }' >>"$work/records"
+    if [ "$5" = crashed ]; then
+        # A crash (an assertion on a NaN, a bad pointer) fails only the
+        # TEST() that crashes: each is run again on its own, so that the
+        # report names the function at fault, not every test of the program.
+        for t in $(test_names "$src"); do
+            note=$(run_handout_test "$dir" "$src" "$work/$name.$t.log" "$limit" "$t" | awk '{ print $5 }')
+            test_statuses "$src" "$work/$name.$t.log" "$note" | awk -v t="$t" '$1 == t'
+        done
+    else
+        test_statuses "$src" "$work/$name.log" "$5"
+    fi | awk -v from="$from" -v name="$name" '{ printf "T\t%s\t%s\t%s\t%s\n", from, name, $1, $2 }' >>"$work/records"
 done
 
 if [ "$build" != failed ] && [ "$no_pages" -eq 0 ]; then
