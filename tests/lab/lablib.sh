@@ -378,6 +378,8 @@ plain_make() {
 # plant_stage ROOT TREE STAGE FILE SED-ARGS... - a copy of ROOT's STAGE in
 # TREE with a bug planted in FILE (sed SED-ARGS), built into
 # TREE/build/STAGE/render against ROOT's common core (built already).
+# The copy starts from ROOT's build of the stage, dates kept, so that make
+# compiles only the planted file (and what includes it).
 # Fails, saying so, when the sed changes nothing (the source moved on);
 # make's output goes to standard output.
 plant_stage() {
@@ -386,11 +388,12 @@ plant_stage() {
     ps_stage=$3
     ps_file=$4
     shift 4
-    rm -rf "$ps_tree/stages/$ps_stage"
+    rm -rf "$ps_tree/stages/$ps_stage" "$ps_tree/build/$ps_stage"
     mkdir -p "$ps_tree/stages" "$ps_tree/build"
     [ -e "$ps_tree/common" ] || ln -s "$ps_root/common" "$ps_tree/common"
     [ -e "$ps_tree/build/common" ] || ln -s "$ps_root/build/common" "$ps_tree/build/common"
-    cp -R "$ps_root/stages/$ps_stage" "$ps_tree/stages/$ps_stage"
+    cp -Rp "$ps_root/stages/$ps_stage" "$ps_tree/stages/$ps_stage"
+    [ ! -d "$ps_root/build/$ps_stage" ] || cp -Rp "$ps_root/build/$ps_stage" "$ps_tree/build/$ps_stage"
     sed "$@" "$ps_root/stages/$ps_stage/$ps_file" >"$ps_tree/stages/$ps_stage/$ps_file"
     if cmp -s "$ps_root/stages/$ps_stage/$ps_file" "$ps_tree/stages/$ps_stage/$ps_file"; then
         echo "the planted change to stages/$ps_stage/$ps_file matches nothing (the source changed?)"

@@ -12,8 +12,9 @@
  *    their centroids spread most, the lower centroids in the first child.
  *  - bvh_intersect: on 3,000 rays per soup, from outside and inside, with
  *    and without a t_max, the closest hit is brute force's (the same
- *    primitive and t; ties to the lower number), and the any-hit query
- *    answers as the closest-hit one.
+ *    primitive and t; ties to the lower number), the any-hit query
+ *    answers as the closest-hit one, and a ray tests under a tenth of the
+ *    primitives on average (the tree is used: brute force tests all).
  *
  * Deterministic (fixed seeds).  White-box: bvh_build, bvh_intersect,
  * prim_bounds, struct bvh and intersect_prim.
@@ -262,7 +263,12 @@ TEST(bvh_intersect_finds_what_brute_force_finds)
         struct world tree = brute;
         struct diag err;
         CHECK(bvh_build(&tree.bvh, &tree, &err));
-        printf("bvh_intersect: a soup of %d primitives, %d set aside\n", tree.n_prims, tree.bvh.n_aside);
+        printf(
+            "bvh_intersect: a soup of %d primitives, %d set aside\n",
+            tree.n_prims,
+            tree.bvh.n_aside);
+        uint64_t tests = 0;
+        int rays = 0;
         for (int i = 0; i < 3000 && reported == 0; i++) {
             vec3 o = vec3_scale(stagecheck_random_vec3(&rng), (real)(i % 3 == 0 ? 0.5 : 3));
             vec3 d = stagecheck_random_vec3(&rng);
@@ -273,7 +279,10 @@ TEST(bvh_intersect_finds_what_brute_force_finds)
             struct hit any_hit;
             struct stats st = {0};
             bool hit_want = world_intersect(&brute, r, t_max, &want, &st);
-            bool hit_got = bvh_intersect(&tree, r, t_max, false, &closest, &st);
+            struct stats cost = {0};
+            bool hit_got = bvh_intersect(&tree, r, t_max, false, &closest, &cost);
+            tests += cost.prim_tests;
+            rays++;
             bool any = bvh_intersect(&tree, r, t_max, true, &any_hit, &st);
             if (hit_got != hit_want
                 || (hit_got && (closest.prim != want.prim || closest.t != want.t))
@@ -300,6 +309,16 @@ TEST(bvh_intersect_finds_what_brute_force_finds)
                     hit_want ? want.prim : -1,
                     hit_want ? (double)want.t : 0.0);
             }
+        }
+        /* A tree tests a few dozen primitives a ray; brute force all. */
+        double per_ray = (double)tests / (rays > 0 ? rays : 1);
+        if (reported == 0 && per_ray > 0.1 * tree.n_prims) {
+            reported++;
+            CHECK_FAIL(
+                "bvh_intersect (%d primitives): %.0f primitive tests a ray on average: traverse the tree, testing "
+                "only the leaves whose boxes the ray meets (brute force tests them all)",
+                tree.n_prims,
+                per_ray);
         }
         bvh_free(&tree.bvh);
         scene_free(&s);
