@@ -9,7 +9,9 @@
 # Writes, as Gradescope's autograder specification describes results.json:
 #   score           the points: one per scored test of the lab that passes
 #                   (grade.sh's lab_passed; the assignment's total is its
-#                   lab_total)
+#                   lab_total), times lab_total / (lab_total + regressions)
+#                   when controls or earlier tests fail (grade.awk), with a
+#                   "regressions" entry of the difference
 #   execution_time, output (make grade's report), visibility,
 #   stdout_visibility
 #   tests[]         {name, score, max_score, status, output, visibility},
@@ -172,6 +174,17 @@ END {
     }
     if (score != gv["lab_passed"] + 0)
         print "results.awk: the tests' score " score " is not the report's lab_passed " gv["lab_passed"] > "/dev/stderr"
+    # Regressions (failing controls and earlier tests) count as failed tests
+    # of the lab (grade.awk): the points become lab_total x grade.awk's
+    # score, and one entry carries the difference, so that the entries add
+    # up to the total and Gradescope shows make grade's percentage.
+    reg = gv["regressions"] + 0
+    if (reg > 0 && gv["lab_total"] + reg > 0) {
+        scaled = score * gv["lab_total"] / (gv["lab_total"] + reg)
+        entry("regressions: " reg " test(s) that pass without your work fail with it", scaled - score, 0, "failed",
+            "Each counts as a failed test of this lab (the controls and the earlier stages' tests above say which).\n")
+        score = scaled
+    }
     print "{"
     print "  \"score\": " score + 0 ","
     print "  \"execution_time\": " secs + 0 ","

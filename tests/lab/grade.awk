@@ -10,6 +10,10 @@
 #                                or - (lablib.sh, run_handout_test)
 #   T FROM PROGRAM TEST STATUS   one of its TEST()s: ok, FAIL or skip
 #                                (lablib.sh, test_statuses)
+#   M FROM PROGRAM TEST MESSAGE  the first failure message of a failing
+#                                TEST() of a function test program
+#                                (NN_lab_functions: each TEST() is named for
+#                                the LAB function it tests)
 # controls: "known" (the C lines are all of them) or "unknown" (none could
 # be found: every test is scored).
 # tests=FILE (optional): also write how each TEST() counted, one line each,
@@ -18,11 +22,17 @@
 # NOTE is the program's (for the course tools: tests/course/).
 #
 # The score is the share of the lab's own tests (FROM = nn) that pass,
-# leaving out the skipped ones and the controls: a test that passes without
-# the student's work measures nothing of it.  The controls are listed, with
-# their status now (one that fails now is a regression, like a failing
-# earlier test).  The last line is for scripts:
-#   GRADE lab=05_bvh score=42.9 lab_passed=3 lab_total=7 controls=2 earlier_passed=40 earlier_total=40 build=ok
+# leaving out the skipped ones and the controls (a test that passes without
+# the student's work measures nothing of it), where every regression - a
+# control or an earlier stage's test that fails now - counts as one more
+# failed test of the lab:
+#   score = 100 lab_passed / (lab_total + regressions)
+# A regression is caught by a test that passes in the untouched handout, so
+# it cannot be the untouched handout's (0%) or the solution's (100%); the
+# student's code is the only code that changed, so it is this lab's bug,
+# and it costs what a failed test of the lab costs.  The controls are
+# listed, with their status now.  The last line is for scripts:
+#   GRADE lab=05_bvh score=42.9 lab_passed=3 lab_total=7 controls=2 earlier_passed=40 earlier_total=40 regressions=0 build=ok
 BEGIN { FS = "\t" }
 
 $1 == "C" { control[$2 SUBSEP $3] = 1; next }
@@ -34,8 +44,14 @@ $1 == "P" {
     next
 }
 
+$1 == "M" { message[$3 SUBSEP $4] = $5; next }
+
 $1 == "T" {
     i = index_of[$3]
+    if ($2 == nn && $3 ~ /_lab_functions$/) {
+        nfn++
+        fn_prog[nfn] = $3; fn_test[nfn] = $4; fn_status[nfn] = $5
+    }
     if ($2 == nn && (($3 SUBSEP $4) in control)) {
         nc++
         cname[nc] = $3 "/" $4
@@ -78,6 +94,14 @@ END {
             gp[from[i]] += passed[i]; gt[from[i]] += total[i]; groups[from[i]] = 1
         }
     }
+    if (nfn > 0) {
+        printf "\nyour functions (each test named for the LAB function it tests):\n"
+        for (k = 1; k <= nfn; k++) {
+            printf "    %-4s %s\n", fn_status[k], fn_test[k]
+            if (fn_status[k] == "FAIL" && ((fn_prog[k] SUBSEP fn_test[k]) in message))
+                printf "         %s\n", message[fn_prog[k] SUBSEP fn_test[k]]
+        }
+    }
     printf "\nthis lab (tests of stage %s):\n", nn
     for (i = 1; i <= n; i++) if (from[i] == nn) line(i)
     printf "    %-32s %4d/%d\n", "total", lp, lt
@@ -102,12 +126,13 @@ END {
         for (i = 1; i <= n; i++) if (from[i] == g) line(i)
         printf "    %-32s %4d/%d\n", "total", gp[g], gt[g]
     }
-    score = lt > 0 ? 100 * lp / lt : 0
+    reg = et - ep + cfailed
+    score = lt + reg > 0 ? 100 * lp / (lt + reg) : 0
     printf "\nscore: %.1f%% (%d of %d tests of lab %s", score, lp, lt, nn
     if (nc > 0) printf "; %d control(s) not scored", nc
     printf "); earlier stages: %d of %d", ep, et
-    if (ep < et || cfailed > 0) printf " (%d regression(s))", et - ep + cfailed
+    if (reg > 0) printf " (%d regression(s), each counted as a failed test of lab %s: your code is the code that changed)", reg, nn
     printf "\n"
-    printf "GRADE lab=%s score=%.1f lab_passed=%d lab_total=%d controls=%d earlier_passed=%d earlier_total=%d build=%s\n",
-        stage, score, lp, lt, nc, ep, et, build
+    printf "GRADE lab=%s score=%.1f lab_passed=%d lab_total=%d controls=%d earlier_passed=%d earlier_total=%d regressions=%d build=%s\n",
+        stage, score, lp, lt, nc, ep, et, reg, build
 }

@@ -19,9 +19,10 @@
 # untouched (without --pristine).
 #
 # The last line is for scripts:
-#   GRADE lab=05_bvh score=42.9 lab_passed=3 lab_total=7 controls=2 earlier_passed=40 earlier_total=40 build=ok
-# score = 100 * lab_passed / lab_total, where lab_total leaves out the
-# controls and the skipped tests (the report and score: grade.awk).
+#   GRADE lab=05_bvh score=42.9 lab_passed=3 lab_total=7 controls=2 earlier_passed=40 earlier_total=40 regressions=0 build=ok
+# score = 100 * lab_passed / (lab_total + regressions), where lab_total
+# leaves out the controls and the skipped tests, and a regression is a
+# control or an earlier test that fails (the report and score: grade.awk).
 #
 # Options:
 #   --pristine     grade with the project's own copy of the tests, not the
@@ -177,6 +178,18 @@ for src in $(handout_tests "$dir"); do
     else
         test_statuses "$src" "$work/$name.log" "$5"
     fi | awk -v from="$from" -v name="$name" '{ printf "T\t%s\t%s\t%s\t%s\n", from, name, $1, $2 }' >>"$work/records"
+    # The function tests' first failure message of each failing TEST(), for
+    # the report's list of the lab's functions (M records, grade.awk).
+    case $name in
+        *_lab_functions) cat "$work/$name.log" "$work/$name".*.log 2>/dev/null |
+            awk -v from="$from" -v name="$name" '
+                /^(ok  |FAIL|skip) [A-Za-z_0-9]+$/ {
+                    if ($1 == "FAIL") printf "M\t%s\t%s\t%s\t%s\n", from, name, $2, (msg != "" ? msg : "(no message: it crashed)")
+                    msg = ""
+                    next
+                }
+                msg == "" && /check failed: / { msg = substr($0, index($0, "check failed: ") + 14, 400) }' >>"$work/records" ;;
+    esac
 done
 
 if [ "$build" != failed ] && [ "$no_pages" -eq 0 ]; then

@@ -814,19 +814,21 @@ test_grade_score() {
     # Untouched: the controls pass, everything else fails: 0%.
     got=$(gr 'C|05_x|a' 'C|05_x|b' 'P|05|05_x|-' 'T|05|05_x|a|ok' 'T|05|05_x|b|ok' 'T|05|05_x|c|FAIL' \
         'P|05|05-06_y|-' 'T|05|05-06_y|e|FAIL' 'P|01|01_z|-' 'T|01|01_z|a|ok' 'T|01|01_z|b|ok')
-    want='GRADE lab=05_x score=0.0 lab_passed=0 lab_total=2 controls=2 earlier_passed=2 earlier_total=2 build=ok|controls (pass without your work, not scored): 05_x/a, 05_x/b|'
+    want='GRADE lab=05_x score=0.0 lab_passed=0 lab_total=2 controls=2 earlier_passed=2 earlier_total=2 regressions=0 build=ok|controls (pass without your work, not scored): 05_x/a, 05_x/b|'
     if [ "$got" = "$want" ]; then ok grade/untouched-scores-0; else fail grade/untouched-scores-0 "got:  $got" "want: $want"; fi
     # The solution: everything passes: 100%, the controls still not scored.
     got=$(gr 'C|05_x|a' 'C|05_x|b' 'P|05|05_x|-' 'T|05|05_x|a|ok' 'T|05|05_x|b|ok' 'T|05|05_x|c|ok' \
         'P|05|05-06_y|-' 'T|05|05-06_y|e|ok' 'T|05|05-06_y|f|skip' 'P|01|01_z|-' 'T|01|01_z|a|ok' 'T|01|01_z|b|ok')
-    want='GRADE lab=05_x score=100.0 lab_passed=2 lab_total=2 controls=2 earlier_passed=2 earlier_total=2 build=ok|controls (pass without your work, not scored): 05_x/a, 05_x/b|'
+    want='GRADE lab=05_x score=100.0 lab_passed=2 lab_total=2 controls=2 earlier_passed=2 earlier_total=2 regressions=0 build=ok|controls (pass without your work, not scored): 05_x/a, 05_x/b|'
     if [ "$got" = "$want" ]; then ok grade/solution-scores-100; else fail grade/solution-scores-100 "got:  $got" "want: $want"; fi
     # Half done, a control broken, an earlier test of the same name as a
     # control (not a control: controls are the lab's), a crashed program.
+    # The three regressions (two controls, one earlier test) count as failed
+    # tests of the lab: 1 of 2 + 3 = 20%.
     got=$(gr 'C|05_x|a' 'C|05_x|b' 'C|05-06_y|e' 'P|05|05_x|-' 'T|05|05_x|a|FAIL' 'T|05|05_x|b|ok' 'T|05|05_x|c|ok' \
         'P|05|05-06_y|crashed' 'T|05|05-06_y|e|FAIL' 'T|05|05-06_y|f|FAIL' 'P|01|01_z|-' 'T|01|01_z|a|FAIL' 'T|01|01_z|b|ok')
-    want='GRADE lab=05_x score=50.0 lab_passed=1 lab_total=2 controls=3 earlier_passed=1 earlier_total=2 build=ok|controls (pass without your work, not scored): 05_x/a (fails now), 05_x/b, 05-06_y/e (fails now)|'
-    if [ "$got" = "$want" ] && grep -q '^score: 50.0% (1 of 2 tests of lab 05; 3 control(s) not scored); earlier stages: 1 of 2 (3 regression(s))$' "$T/report" &&
+    want='GRADE lab=05_x score=20.0 lab_passed=1 lab_total=2 controls=3 earlier_passed=1 earlier_total=2 regressions=3 build=ok|controls (pass without your work, not scored): 05_x/a (fails now), 05_x/b, 05-06_y/e (fails now)|'
+    if [ "$got" = "$want" ] && grep -q '^score: 20.0% (1 of 2 tests of lab 05; 3 control(s) not scored); earlier stages: 1 of 2 (3 regression(s), each counted as a failed test of lab 05: your code is the code that changed)$' "$T/report" &&
         grep -q '^    05-06_y  *0/1    crashed failed: f$' "$T/report"; then
         ok grade/controls-not-scored
     else
@@ -837,6 +839,23 @@ test_grade_score() {
     earlier_failures "$T/report" | sed 's/  */ /g' >"$T/earlier"
     printf ' 01_z 1/2 failed: a\n' >"$T/earlier.expected"
     same grade/earlier-failures "$T/earlier.expected" "$T/earlier"
+    # Every test of the lab passes but a control fails: below 100% (a bug
+    # that only a control catches is scored).
+    got=$(gr 'C|05_x|a' 'P|05|05_x|-' 'T|05|05_x|a|FAIL' 'T|05|05_x|b|ok' 'T|05|05_x|c|ok')
+    case $got in
+        'GRADE lab=05_x score=66.7 lab_passed=2 lab_total=2 controls=1 earlier_passed=0 earlier_total=0 regressions=1 build=ok|'*) ok grade/a-failing-control-costs-points ;;
+        *) fail grade/a-failing-control-costs-points "$got" ;;
+    esac
+    # The function tests' list: each TEST() of the lab's NN_lab_functions
+    # with its status, and a failing one's first message under it.
+    printf '%s\n' 'P|05|05_lab_functions|-' 'T|05|05_lab_functions|bvh_intersect_x|FAIL' \
+        'M|05|05_lab_functions|bvh_intersect_x|bvh_intersect (3 primitives): wrong hit' \
+        'T|05|05_lab_functions|build_subtree_y|ok' | tr '|' '\t' >"$T/records"
+    awk -v nn=05 -v stage=05_x -v build=ok -v controls=known -f "$LAB_DIR/grade.awk" "$T/records" |
+        sed -n '/^your functions/,/^$/p' >"$T/functions"
+    printf '%s\n' 'your functions (each test named for the LAB function it tests):' '    FAIL bvh_intersect_x' \
+        '         bvh_intersect (3 primitives): wrong hit' '    ok   build_subtree_y' '' >"$T/functions.expected"
+    same grade/functions-listed-with-messages "$T/functions.expected" "$T/functions"
     got=$(gr 'P|05|05_x|-' 'T|05|05_x|a|ok')
     case $got in
         *'controls: none'*'|') ok grade/no-controls ;;
