@@ -138,6 +138,11 @@ SEEDS ?= 20
 test-seeds: all
 	@tests/calibrate/seed-offsets.sh $(SEEDS)
 
+# The labs' statistical function tests on correct code under SEEDS (2000)
+# seed offsets each: their false-alarm rates (docs/calibration/README.md).
+calibrate-functions: all
+	@tests/calibrate/functions.sh $(or $(SEEDS),2000)
+
 # Every stage on random scenes nobody tuned it to, at random scales, and the
 # path tracers against Mitsuba 3 on them (tests/unseen/, docs/unseen.md).
 # UNSEEN_FLAGS: the script's options, e.g. --count 40 --first 100.
@@ -212,6 +217,7 @@ help:
 	'make trade            speed against accuracy of every stage (docs/trade/; QUICK=1: short)' \
 	'make bench            BVH build and trace rates, against brute force and Embree' \
 	'make calibrate        false-alarm and detection rates of every verdict (docs/calibration/)' \
+	'make calibrate-functions  false-alarm rates of the labs'\'' statistical function tests (SEEDS=2000)' \
 	'make test-seeds       the statistical stage tests under SEEDS (20) other seeds: failure rates' \
 	'make unseen           every stage on random scenes at random scales; the path tracers against Mitsuba 3' \
 	'make docs-images      the lessons'"'"' pictures (docs/images/)' \
@@ -230,4 +236,4 @@ help:
 	'Knobs, with any target: REAL=float (single precision, in build/float/: make REAL=float test),' \
 	'WERROR=1 (warnings are errors), OPENEXR=0|1, TINYGLTF=0|1, CFLAGS=... (common/config.mk)'
 
-.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate test-seeds unseen docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate calibrate-functions test-seeds unseen docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)
