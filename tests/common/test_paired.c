@@ -58,80 +58,71 @@ write_image(const char *name, int w, uint64_t seed, double all, double scale, in
     return ok;
 }
 
-static int
-paired(const char *student, const char *solution, char *out)
+/* paired STUDENT solution.pfm exits `status` and prints `needle`. */
+static void
+expect(const char *student, int status, const char *needle, const char *what)
 {
     char s[512];
     char r[512];
+    char out[CAP];
     snprintf(s, sizeof s, "%s", test_tmp_path(student));
-    snprintf(r, sizeof r, "%s", test_tmp_path(solution));
+    snprintf(r, sizeof r, "%s", test_tmp_path("solution.pfm"));
     const char *args[] = {s, r, NULL};
-    return test_run_tool("paired", args, out, CAP);
+    int got = test_run_tool("paired", args, out, CAP);
+    CHECK_MSG(
+        got == status && strstr(out, needle) != NULL,
+        "%s: exit %d, expected %d and \"%s\":\n%s",
+        what,
+        got,
+        status,
+        needle,
+        out);
 }
 
 TEST(same_paths_are_consistent_and_paired)
 {
-    char out[CAP];
     CHECK(
         write_image("solution.pfm", W, 1, 1, 1, -1, 0)
         && write_image("same.pfm", W, 1, 1, 1, -1, 0));
-    CHECK_MSG(paired("same.pfm", "solution.pfm", out) == 0, "%s", out);
-    CHECK_MSG(strstr(out, "paired: 0.000 (paired), 0 of") != NULL, "%s", out);
+    expect("same.pfm", 0, "paired: 0.000 (paired), 0 of", "the same image");
 }
 
 TEST(two_percent_in_a_square_is_found_and_named)
 {
-    char out[CAP];
     CHECK(
         write_image("solution.pfm", W, 1, 1, 1, -1, 0)
         && write_image("square.pfm", W, 1, 1, 1.02, 64, 32));
-    CHECK_MSG(paired("square.pfm", "solution.pfm", out) == 1, "%s", out);
-    CHECK_MSG(
-        strncmp(out, "  block x 64-95, y 32-63, ", 26) == 0,
-        "the square is not named first: %s",
-        out);
-    CHECK_MSG(strstr(out, "(paired)") && strstr(out, ": biased"), "%s", out);
+    /* The square's block first (the output starts with it), paired. */
+    expect("square.pfm", 1, "(paired)", "2% in a square of the same paths");
+    expect("square.pfm", 1, "  block x 64-95, y 32-63, ", "the square named");
 }
 
 TEST(under_the_minimum_effect_is_consistent)
 {
-    char out[CAP];
     CHECK(
         write_image("solution.pfm", W, 1, 1, 1, -1, 0)
         && write_image("half.pfm", W, 1, 1.005, 1, -1, 0));
-    CHECK_MSG(
-        paired("half.pfm", "solution.pfm", out) == 0,
-        "0.5%% everywhere is under the 1%% effect: %s",
-        out);
+    expect("half.pfm", 0, ": consistent", "0.5% everywhere, under the 1% effect");
 }
 
 TEST(other_paths_are_unpaired_and_still_judged)
 {
-    char out[CAP];
     CHECK(
         write_image("solution.pfm", W, 1, 1, 1, -1, 0)
         && write_image("other.pfm", W, 2, 1, 1, -1, 0));
-    CHECK_MSG(paired("other.pfm", "solution.pfm", out) == 0, "%s", out);
-    CHECK_MSG(
-        strstr(out, "(unpaired") != NULL,
-        "independent noise is not called unpaired: %s",
-        out);
+    expect("other.pfm", 0, "(unpaired", "independent noise");
     CHECK(write_image("other_square.pfm", W, 2, 1, 1.06, 64, 32));
-    CHECK_MSG(
-        paired("other_square.pfm", "solution.pfm", out) == 1,
-        "6%% in a square, other paths: %s",
-        out);
+    expect("other_square.pfm", 1, ": biased", "6% in a square, independent noise");
 }
 
 TEST(nan_is_biased_and_sizes_must_match)
 {
-    char out[CAP];
     CHECK(
         write_image("solution.pfm", W, 1, 1, 1, -1, 0)
         && write_image("nan.pfm", W, 1, 1, NAN, 0, 0));
-    CHECK_MSG(paired("nan.pfm", "solution.pfm", out) == 1, "%s", out);
+    expect("nan.pfm", 1, ": biased", "a NaN square");
     CHECK(write_image("narrow.pfm", W - 8, 1, 1, 1, -1, 0));
-    CHECK_MSG(paired("narrow.pfm", "solution.pfm", out) == 2, "%s", out);
+    expect("narrow.pfm", 2, "is 120x96", "two sizes");
 }
 
 TEST_MAIN(
