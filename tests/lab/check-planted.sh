@@ -26,6 +26,10 @@
 #                    cell); a ball above a floor under a square light, 16
 #                    renders of one shadow ray against the correct stage's
 #                    1024: penumbra (and the correct stage's 16: none)
+#   paired-*         make grade's paired pages (grade-pages.sh): the
+#                    correct stage 07 against itself with another thread
+#                    count on each page scene (consistent), and the two
+#                    planted 07 bugs above (biased), by build/tools/paired
 # The grade must list the expected region first among the biased ones; and
 # the correct stages 07 and 03, rendered the same way, must have no biased
 # region.
@@ -204,13 +208,42 @@ grade_exact() {
     fi
 }
 
+# paired_check NAME RENDER SCENE EXPECT: make grade's paired page
+# (grade-pages.sh): RENDER with the seed and samples of the solution's
+# render that make-lab.sh ships (lablib.sh's PAIRED_SPP, PAIRED_SEED),
+# against the correct stage 07's render (the solution), judged by paired;
+# EXPECT "consistent" or "biased".  The solution's render is made with two
+# threads, the student's with one: the same image, bit for bit (the
+# stages' determinism), so correct work is paired and never off.
+paired_check() {
+    pc_opts="-q -W 256 -H 256 --spp $PAIRED_SPP --seed $PAIRED_SEED"
+    # shellcheck disable=SC2086 # the options are words
+    if "$build/07_pathtrace/render" $pc_opts -t 2 -o "$work/$1.solution.pfm" "$root/scenes/$3.scene" >>"$work/log" 2>&1 &&
+        "$2" $pc_opts -t 1 -o "$work/$1.student.pfm" "$root/scenes/$3.scene" >>"$work/log" 2>&1; then
+        "$build/tools/paired" "$work/$1.student.pfm" "$work/$1.solution.pfm" >"$work/grade" 2>&1 || true
+        [ "$verbose" -eq 0 ] || sed "s|^|    $1: |" "$work/grade"
+        if tail -n 1 "$work/grade" | grep -q ": $4\$"; then
+            pass "$1"
+        else
+            fail "$1" "paired says: $(tail -n 1 "$work/grade"), not $4"
+        fi
+    else
+        fail "$1" "a render failed"
+    fi
+}
+
 # The correct stage 07 names no region.
 grade_07_correct correct-07-diffuse cornell_diffuse_area
 grade_07_correct correct-07-specular cornell_specular_area
 
+for scene in $(paired_scenes 07); do
+    paired_check "paired-correct-$scene" "$build/07_pathtrace/render" "$scene" consistent
+done
+
 if plant missing-cosine 07_pathtrace light.c -e \
     's|vec3_scale(light->radiance, cos_surface \* cos_light_area / dist2)|vec3_scale(light->radiance, cos_light_area / dist2)|'; then
     grade_07 missing-cosine "$work/missing-cosine/build/07_pathtrace/render" cornell_diffuse_area diffuse-lit
+    paired_check paired-missing-cosine "$work/missing-cosine/build/07_pathtrace/render" cornell_diffuse_area biased
 else
     fail missing-cosine "the planted stage does not build"
 fi
@@ -218,6 +251,7 @@ fi
 if plant mirror-pdf 07_pathtrace bsdf.c -e \
     's|vec3_scale(mirror, p_total / p_mirror)|vec3_scale(mirror, p_total / (2 * p_mirror))|'; then
     grade_07 mirror-pdf "$work/mirror-pdf/build/07_pathtrace/render" cornell_specular_area mirror
+    paired_check paired-mirror-pdf "$work/mirror-pdf/build/07_pathtrace/render" cornell_specular_area biased
 else
     fail mirror-pdf "the planted stage does not build"
 fi

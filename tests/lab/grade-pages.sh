@@ -1,7 +1,7 @@
 #!/bin/sh
 # grade-pages.sh - a compare report page for each reference render of a lab.
 #
-#   grade-pages.sh [--help] [--spp N|auto] [--max-spp N] HANDOUT STAGE OUT
+#   grade-pages.sh [--help] [--spp N|auto] [--max-spp N] [--records FILE] HANDOUT STAGE OUT
 #
 # HANDOUT is a built lab handout (grade.sh's copy), STAGE its stage
 # (05_bvh).  For every Mitsuba reference the stage's tests compare with
@@ -11,7 +11,19 @@
 # the verdict; how to read it: the handout's LAB.md, "Reading the report
 # pages").  Prints for each page its verdict, what its tests can find
 # (compare's power line, pages with block tests), its regions and its
-# path.  --spp auto (the default, as make grade's): for each noise-tested
+# path.
+# Paired pages (labs 06-08, scored): the student's render with the seed
+# and samples of the solution's render that the handout carries
+# (tests/reference/solution/, make-lab.sh), compared with it pixel by
+# pixel (build/tools/paired: per 32x32 block, the difference against a 1%
+# minimum effect); where the student's code draws its random numbers as
+# the solution's does, the two share their paths and a bias shows at 16
+# spp; where not, the comparison is as of two independent renders, and
+# says "unpaired".  --records FILE: one line a paired page, "NAME ok" or
+# "NAME FAIL MESSAGE" (grade.sh scores them).
+# By default (no --spp) the Mitsuba pages of labs 06-08 render 16 spp, a
+# look at the image and its error map, not a verdict to score.
+# --spp auto (make grade SPP=auto): for each noise-tested
 # page, as many samples per pixel as its test needs to find a 2% bias in 9
 # of 10 32x32 windows 9 times in 10 (compare's power line on a pilot of two
 # renders of GRADE_DEFAULT_SPP, with seeds of their own, not judged), at
@@ -46,11 +58,12 @@ PROG=grade-pages.sh
 LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 . "$LAB_DIR/lablib.sh"
 
-spp=auto
+spp=paired
 max_spp=$GRADE_MAX_SPP
-parse_options '--spp spp=VALUE --max-spp max_spp=VALUE' "$@"
+records=
+parse_options '--spp spp=VALUE --max-spp max_spp=VALUE --records records=VALUE' "$@"
 shift "$po_used"
-check_spp "$spp" auto
+[ "$spp" = paired ] || check_spp "$spp" auto
 check_spp "$max_spp"
 [ $# -eq 3 ] || usage_error "expected HANDOUT STAGE OUT, got $# argument(s)"
 dir=$(abs_dir "$1")
@@ -111,6 +124,7 @@ renders() {
 # False when the pilot could not render or be compared.
 page_spp() {
     pg_spp=$spp
+    [ "$spp" != paired ] || pg_spp=$PAIRED_SPP
     [ "$spp" = auto ] || return 0
     renders "$1.pilot" "$2" 2 1001 "--spp $GRADE_DEFAULT_SPP" || return 1
     # shellcheck disable=SC2086
@@ -155,10 +169,45 @@ page() {
     fi
 }
 
+# paired_page NAME SCENE: the student's render of SCENE with the seed and
+# samples of the solution's render in the handout (tests/reference/
+# solution/, make-lab.sh), judged by build/tools/paired against it: the
+# pixel-by-pixel differences, per 32x32 block, against a 1% minimum effect.
+# Scored: its verdict goes to the records (--records: "NAME ok|FAIL
+# MESSAGE").  Without the solution's render, says so and judges nothing.
+paired_page() {
+    pp_solution=$refs/solution/$2.pfm
+    if [ ! -f "$pp_solution" ]; then
+        echo "    $1, paired: the handout has no solution render of $2 (make-lab.sh renders it with the project's build): not judged"
+        return 0
+    fi
+    pp_status=0
+    if ! "$render" -q -W 256 -H 256 --spp "$PAIRED_SPP" --seed "$PAIRED_SEED" -o "$work/$1.paired.pfm" \
+        "$dir/scenes/$2.scene" >"$work/render.log" 2>&1; then
+        echo "    $1, paired: the render failed:"
+        sed -n '1,5s/^/        /p' "$work/render.log"
+        pp_status=1
+        echo "the render failed: $(head -n 1 "$work/render.log")" >"$work/paired.out"
+    else
+        "$dir/build/tools/paired" "$work/$1.paired.pfm" "$pp_solution" >"$work/paired.out" 2>&1 || pp_status=$?
+        echo "    $1, paired with the solution's render ($PAIRED_SPP spp, seed $PAIRED_SEED): $(tail -n 1 "$work/paired.out" | sed 's/^paired: //')"
+        sed '$d' "$work/paired.out" | sed -n '1,3s/^  /        /p'
+    fi
+    [ "$pp_status" -le 1 ] || failed=1
+    if [ -n "$records" ]; then
+        if [ "$pp_status" -eq 0 ]; then
+            echo "$1 ok" >>"$records"
+        else
+            echo "$1 FAIL $(head -n 1 "$work/paired.out" | sed 's/^ *//')" >>"$records"
+        fi
+    fi
+}
+
 # noise_pages N: the family level of each of the lab's N block-tested pages.
 noise_pages() {
     alpha=$(page_alpha "$1")
     np_spp="$spp spp"
+    [ "$spp" = paired ] && np_spp="$PAIRED_SPP spp (a look: the paired verdict is the one scored)"
     np_doc=docs/calibration/README.md
     if [ "$spp" = auto ]; then
         np_spp="the spp its pilot asks for"
@@ -182,11 +231,13 @@ case $nn in
         noise_pages 1
         page_spp cornell_diffuse_point_direct cornell_diffuse_point &&
             page cornell_diffuse_point_direct cornell_diffuse_point 2 "--spp $pg_spp" --alpha "$alpha"
+        paired_page cornell_diffuse_point_direct cornell_diffuse_point
         ;;
     07 | 08)
         noise_pages 3
-        for scene in cornell_diffuse_point cornell_diffuse_area cornell_specular_area; do
+        for scene in $(paired_scenes "$nn"); do
             page_spp "${scene}_gi" "$scene" && page "${scene}_gi" "$scene" 2 "--spp $pg_spp" --alpha "$alpha"
+            paired_page "${scene}_gi" "$scene"
         done
         ;;
 esac

@@ -194,7 +194,17 @@ done
 
 if [ "$build" != failed ] && [ "$no_pages" -eq 0 ]; then
     echo "report pages (how to read them: LAB.md, \"Reading the report pages\"):"
-    "$LAB_DIR/grade-pages.sh" ${spp:+--spp "$spp"} "$dir" "$stage" "${pages:-$lab/grade}" || echo "note: some pages could not be written"
+    : >"$work/paired"
+    "$LAB_DIR/grade-pages.sh" ${spp:+--spp "$spp"} --records "$work/paired" "$dir" "$stage" "${pages:-$lab/grade}" ||
+        echo "note: some pages could not be written"
+    # The paired pages are tests of the lab: "pages" in its group.
+    if [ -s "$work/paired" ]; then
+        printf 'P\t%s\tpages\t-\n' "$nn" >>"$work/records"
+        awk -v nn="$nn" '{
+            printf "T\t%s\tpages\t%s_paired\t%s\n", nn, $1, $2
+            if ($2 == "FAIL") { m = $0; sub(/^[^ ]+ FAIL /, "", m); printf "M\t%s\tpages\t%s_paired\t%s\n", nn, $1, m }
+        }' "$work/paired" >>"$work/records"
+    fi
 fi
 
 if [ -n "$keep" ]; then

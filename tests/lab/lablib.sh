@@ -321,6 +321,19 @@ handout_differences() {
 # Samples per pixel of each of the two renders of a noise-tested report
 # page of make grade (grade-pages.sh --spp, make grade SPP=N): what the
 # pages' power to find a bias rests on (docs/calibration/README.md).
+# The paired pages (grade-pages.sh, the default): the scenes each lab's
+# pages render, the samples per pixel and seed of the solution's renders
+# that make-lab.sh ships in a handout (tests/reference/solution/), which
+# the student's renders repeat.
+paired_scenes() {
+    case $1 in
+        06) echo cornell_diffuse_point ;;
+        07 | 08) echo cornell_diffuse_point cornell_diffuse_area cornell_specular_area ;;
+    esac
+}
+PAIRED_SPP=16
+PAIRED_SEED=1
+
 GRADE_DEFAULT_SPP=64
 
 # The most samples per pixel --spp auto gives a page's renders (about two

@@ -123,6 +123,30 @@ write_tests() {
     done
 }
 
+# The solution's renders of the paired pages' scenes (lablib.sh's
+# paired_scenes: labs 06-08), with the project's own build of the stage,
+# into tests/reference/solution/: make grade renders the student's stage
+# with the same seeds and compares the two pixel by pixel (grade-pages.sh).
+# Images only: the handout never holds the solution's code.  Without a
+# build of the stage, none (the pages then compare independent renders).
+write_solution_renders() {
+    ws_render=$root/build/$stage/render
+    ws_scenes=$(paired_scenes "$nn")
+    [ -n "$ws_scenes" ] && [ -x "$ws_render" ] || return 0
+    mkdir -p "$tmp/tests/reference/solution"
+    for ws_scene in $ws_scenes; do
+        "$ws_render" -q -W 256 -H 256 --spp "$PAIRED_SPP" --seed "$PAIRED_SEED" \
+            -o "$tmp/tests/reference/solution/$ws_scene.pfm" "$root/scenes/$ws_scene.scene" >/dev/null 2>&1 ||
+            die "the solution's render of $ws_scene failed"
+    done
+    {
+        echo "The solution of $stage rendered by make-lab.sh (tests/lab/make-lab.sh):"
+        echo "render -W 256 -H 256 --spp $PAIRED_SPP --seed $PAIRED_SEED scenes/NAME.scene, one image a scene."
+        echo "make grade renders your stage the same way and compares the two pixel by pixel"
+        echo "(LAB.md, \"Reading the report pages\")."
+    } >"$tmp/tests/reference/solution/README"
+}
+
 write_makefile() {
     sed -e "s/@STAGE@/$stage/g" -e "s/@NN@/$nn/g" "$LAB_DIR/handout.mk.in" >"$tmp/Makefile"
     printf '/build/\n' >"$tmp/.gitignore"
@@ -320,6 +344,7 @@ write_stage
 copy_files "$root/common" "$tmp/common"
 copy_files "$root/scenes" "$tmp/scenes"
 write_tests
+write_solution_renders
 write_makefile
 write_course_files
 write_labmd
