@@ -606,19 +606,31 @@ test_grade_pages() {
             fail "grade-pages/$gp_stage" "$gp_pages pages, $gp_images images" "$(cat "$T/out")"
         fi
     done
-    # No --spp: auto, as make grade's default: a pilot of two 64-spp
-    # renders, whose power line already finds 2% on lab 06's page, so its
-    # renders keep the pilot's spp.
-    if "$LAB_DIR/grade-pages.sh" "$root" 06_supersample "$T/pages/auto" >"$T/out" 2>&1 &&
+    # No --spp (make grade's default): the Mitsuba page at 16 spp, a look,
+    # and the paired page, which the project (no solution renders in
+    # tests/reference/solution/: not a handout) cannot judge, and says so,
+    # recording nothing.
+    : >"$T/paired-records"
+    if "$LAB_DIR/grade-pages.sh" --records "$T/paired-records" "$root" 06_supersample "$T/pages/default" >"$T/out" 2>&1 &&
+        grep -q "two renders of 16 spp (a look: the paired verdict is the one scored)" "$T/out" &&
+        grep -q "^    cornell_diffuse_point_direct, paired: the handout has no solution render of cornell_diffuse_point" "$T/out" &&
+        [ ! -s "$T/paired-records" ]; then
+        ok grade-pages/paired-by-default
+    else
+        fail grade-pages/paired-by-default "$(cat "$T/out")"
+    fi
+    # --spp auto: a pilot of two 64-spp renders, whose power line already
+    # finds 2% on lab 06's page, so its renders keep the pilot's spp.
+    if "$LAB_DIR/grade-pages.sh" --spp auto "$root" 06_supersample "$T/pages/auto" >"$T/out" 2>&1 &&
         grep -q "two renders of the spp its pilot asks for" "$T/out" &&
         grep -q "1 grade in 100 by design; measured: docs/calibration/auto-256/README.md)$" "$T/out" &&
         [ -f "$root/docs/calibration/auto-256/README.md" ] &&
         grep -q "^    cornell_diffuse_point_direct: 64 spp a render (its pilot, two renders of 64 spp: finds 2% in 9 windows of 10 already)$" "$T/out" &&
         grep -q "^    cornell_diffuse_point_direct: consistent with the reference" "$T/out" &&
         [ "$(ls "$T/pages/auto"/*.html | wc -l)" -eq 1 ]; then
-        ok grade-pages/spp-auto-by-default
+        ok grade-pages/spp-auto
     else
-        fail grade-pages/spp-auto-by-default "$(cat "$T/out")"
+        fail grade-pages/spp-auto "$(cat "$T/out")"
     fi
     expect_exit grade-pages/spp-auto-or-number 2 "spp needs a positive number or auto, got 'x'" \
         "$LAB_DIR/grade-pages.sh" --spp x "$root" 06_supersample "$T/pages/none"
