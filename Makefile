@@ -222,7 +222,7 @@ help:
 	'make unseen           every stage on random scenes at random scales; the path tracers against Mitsuba 3' \
 	'make docs-images      the lessons'"'"' pictures (docs/images/)' \
 	'make lab STAGE=NN OUT=dir   a lab handout (SOLUTION=1 the instructor'"'"'s; FORCE=1 moves a changed one aside)' \
-	'make grade LAB=dir    build a handout, run its tests, score them (SPP=auto, the default, or N: the report pages'"'"' samples)' \
+	'make grade LAB=dir    build a handout, run its tests, score them, paired pages included (SPP=auto or N: the Mitsuba pages'"'"' samples)' \
 	'make autograder STAGE=NN OUT=dir   the Gradescope autograder of a lab (OUT/autograder.zip)' \
 	'make grade-class SUBMISSIONS=dir   grade every submission: a CSV and an HTML summary (SCHEDULER=slurm: a job array)' \
 	'make farm-render SCENE=f SPP=N TASKS=N   one render split over N Slurm tasks by seed, merged' \

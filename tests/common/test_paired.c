@@ -67,7 +67,8 @@ expect(const char *student, int status, const char *needle, const char *what)
     char out[CAP];
     snprintf(s, sizeof s, "%s", test_tmp_path(student));
     snprintf(r, sizeof r, "%s", test_tmp_path("solution.pfm"));
-    const char *args[] = {s, r, NULL};
+    /* Blocks of 32, aligned with the planted square: it is one block. */
+    const char *args[] = {"--block", "32", s, r, NULL};
     int got = test_run_tool("paired", args, out, CAP);
     CHECK_MSG(
         got == status && strstr(out, needle) != NULL,

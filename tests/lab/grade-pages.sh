@@ -15,7 +15,7 @@
 # Paired pages (labs 06-08, scored): the student's render with the seed
 # and samples of the solution's render that the handout carries
 # (tests/reference/solution/, make-lab.sh), compared with it pixel by
-# pixel (build/tools/paired: per 32x32 block, the difference against a 1%
+# pixel (build/tools/paired: per 16x16 block, the difference against a 1%
 # minimum effect); where the student's code draws its random numbers as
 # the solution's does, the two share their paths and a bias shows at 16
 # spp; where not, the comparison is as of two independent renders, and
@@ -172,7 +172,7 @@ page() {
 # paired_page NAME SCENE: the student's render of SCENE with the seed and
 # samples of the solution's render in the handout (tests/reference/
 # solution/, make-lab.sh), judged by build/tools/paired against it: the
-# pixel-by-pixel differences, per 32x32 block, against a 1% minimum effect.
+# pixel-by-pixel differences, per 16x16 block, against a 1% minimum effect.
 # Scored: its verdict goes to the records (--records: "NAME ok|FAIL
 # MESSAGE").  Without the solution's render, says so and judges nothing.
 paired_page() {

@@ -15,9 +15,10 @@
  * standard error is d's own spread) and is as weak as the comparison of
  * two independent renders, which the output says ("unpaired").
  *
- * For each N x N block (default 32) and channel: the mean of d, its
- * standard error from d's spread over the block's pixels, and the
- * solution's mean m.  The block is "off" when |mean d| exceeds F |m| (the
+ * For each N x N block (default 16: any 32x32 square holds a whole one, so
+ * a bias in a 32x32 square is a bias of at least one block) and channel:
+ * the mean of d, its standard error from d's spread over the block's
+ * pixels, and the solution's mean m.  The block is "off" when |mean d| exceeds F |m| (the
  * minimum effect, default 0.01: a difference of floating-point order or a
  * fraction of a percent is never a failure) by more than z standard
  * errors, z the normal quantile of alpha (default 0.01) Sidak-corrected
@@ -58,7 +59,7 @@ usage(FILE *f)
 static bool
 parse(int argc, char **argv, struct options *o)
 {
-    *o = (struct options){.block = 32, .effect = 0.01, .alpha = 0.01};
+    *o = (struct options){.block = 16, .effect = 0.01, .alpha = 0.01};
     int i = 1;
     for (; i + 1 < argc && argv[i][0] == '-' && argv[i][1] == '-'; i += 2) {
         char *end = NULL;
