@@ -13,10 +13,12 @@
 #
 # Controls: a test of the lab that passes in the untouched handout (a
 # fresh one from the project, as make-lab.sh writes it) measures nothing of
-# the student's work; it is listed as a control, not scored.  grade.sh
-# finds them by building and running the untouched handout's lab tests
-# first (--controls FILE gives them instead); LAB itself when it is
-# untouched (without --pristine).
+# the student's work; it is listed as a control, not scored.  With
+# --pristine they are the stored list tests/course/controls/NN_name (which
+# check-labs keeps equal to what an untouched handout gives); otherwise,
+# or without that file, grade.sh finds them by building and running the
+# untouched handout's lab tests first (--controls FILE gives them instead);
+# LAB itself when it is untouched (without --pristine).
 #
 # The last line is for scripts:
 #   GRADE lab=05_bvh score=42.9 lab_passed=3 lab_total=7 controls=2 earlier_passed=40 earlier_total=40 regressions=0 build=ok
@@ -105,6 +107,14 @@ find_controls() {
 # untouched for the controls.
 dir=$lab
 controls_known=known
+# make grade (--pristine) takes the course tools' stored list of the lab's
+# controls, which check-labs checks is the one an untouched handout gives
+# (tests/course/controls/NN_name): the untouched handout's run would cost
+# as much as the grading itself.
+if [ -z "$controls" ] && [ "$pristine" -eq 1 ] && [ -f "$root/tests/course/controls/$stage" ]; then
+    controls=$root/tests/course/controls/$stage
+    echo "controls: the stored list, tests/course/controls/$stage"
+fi
 if [ -n "$controls" ]; then
     cp "$controls" "$work/controls"
 fi
