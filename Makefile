@@ -159,8 +159,8 @@ lab:
 	@tests/lab/make-lab.sh $(if $(filter 1,$(SOLUTION)),--solution) $(if $(filter 1,$(FORCE)),--force) "$(STAGE)" "$(OUT)"
 
 grade:
-	@if [ -z "$(LAB)" ]; then echo "usage: make grade LAB=path" >&2; exit 2; fi
-	@tests/lab/grade.sh --pristine $(if $(SPP),--spp "$(SPP)") "$(LAB)"
+	@if [ -z "$(LAB)" ]; then echo "usage: make grade LAB=path [FULL=1] [SPP=N|auto]" >&2; exit 2; fi
+	@tests/lab/grade.sh --pristine $(if $(filter 1,$(FULL)),--full) $(if $(SPP),--spp "$(SPP)") "$(LAB)"
 
 # A course at scale (tests/course/README.md): Gradescope's autograder, a
 # whole class graded (locally or as a Slurm job array), a render split over

@@ -104,7 +104,7 @@ grade_handout() {
     gh_dir=$1
     gh_log=$2
     shift 2
-    "$LAB_DIR/grade.sh" --no-pages --root "$root" --timeout "$limit" --jobs "$jobs" "$@" "$gh_dir" \
+    "$LAB_DIR/grade.sh" --full --no-pages --root "$root" --timeout "$limit" --jobs "$jobs" "$@" "$gh_dir" \
         >"$gh_log" 2>&1 || true
     sed -n 's/^GRADE //p' "$gh_log" | tail -n 1
 }

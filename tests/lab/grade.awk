@@ -10,6 +10,9 @@
 #                                or - (lablib.sh, run_handout_test)
 #   T FROM PROGRAM TEST STATUS   one of its TEST()s: ok, FAIL or skip
 #                                (lablib.sh, test_statuses)
+#   S FROM PROGRAM               a test program not run: only a full grade
+#                                runs it (grade.sh --full); listed, its
+#                                tests neither passed nor failed
 #   M FROM PROGRAM TEST MESSAGE  the first failure message of a failing
 #                                TEST() of a function test program
 #                                (NN_lab_functions: each TEST() is named for
@@ -45,6 +48,8 @@ $1 == "P" {
 }
 
 $1 == "M" { message[$3 SUBSEP $4] = $5; next }
+
+$1 == "S" { not_run = not_run (not_run != "" ? ", " : "") $3; next }
 
 $1 == "T" {
     i = index_of[$3]
@@ -126,6 +131,8 @@ END {
         for (i = 1; i <= n; i++) if (from[i] == g) line(i)
         printf "    %-32s %4d/%d\n", "total", gp[g], gt[g]
     }
+    if (not_run != "")
+        printf "\nnot run (slow; their bugs are the function tests' and the pages'; make grade FULL=1 runs them): %s\n", not_run
     reg = et - ep + cfailed
     score = lt + reg > 0 ? 100 * lp / (lt + reg) : 0
     printf "\nscore: %.1f%% (%d of %d tests of lab %s", score, lp, lt, nn

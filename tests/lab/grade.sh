@@ -48,6 +48,10 @@
 #                  test programs' logs (NAME.log), the build's (build.log),
 #                  and how each TEST() counted (tests: grade.awk's tests=)
 #                  (for the course tools, tests/course/)
+#   --full         run every test program; without it, those whose header
+#                  says "Grading: make grade FULL=1 only" (slow programs
+#                  whose bugs the function tests and the paired pages find)
+#                  are not run, and the report lists them
 #   --lab-only     build and run only the lab's own tests, not the earlier
 #                  stages' (check-labs grades the solution so: make test
 #                  runs the earlier tests on the same code)
@@ -74,7 +78,8 @@ save_controls=
 keep=
 limit=300
 jobs=$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 2)
-parse_options '--pristine pristine=1 --lab-only lab_only=1 --no-pages no_pages=1 --pages pages=VALUE --spp spp=VALUE --controls controls=VALUE
+full=0
+parse_options '--pristine pristine=1 --full full=1 --lab-only lab_only=1 --no-pages no_pages=1 --pages pages=VALUE --spp spp=VALUE --controls controls=VALUE
     --save-controls save_controls=VALUE --keep keep=VALUE --timeout limit=VALUE --jobs jobs=VALUE --root root=DIR' "$@"
 shift "$po_used"
 [ $# -eq 1 ] || usage_error "expected one handout directory, got $# argument(s)"
@@ -175,6 +180,10 @@ for src in $(handout_tests "$dir"); do
     name=$(basename "$src" .c)
     from=$(test_from "$src")
     [ "$lab_only" -eq 0 ] || [ "$from" = "$nn" ] || continue
+    if [ "$full" -eq 0 ] && full_only "$src"; then
+        printf 'S\t%s\t%s\n' "$from" "$name" >>"$work/records"
+        continue
+    fi
     set -- $(run_handout_test "$dir" "$src" "$work/$name.log" "$limit")
     printf 'P\t%s\t%s\t%s\n' "$from" "$name" "$5" >>"$work/records"
     if [ "$5" = crashed ]; then

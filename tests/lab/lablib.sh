@@ -138,6 +138,13 @@ handout_stage() {
     basename "$1"
 }
 
+# full_only SRC - whether a stage test program runs only in a full grade
+# (make grade FULL=1, grade.sh --full): its header says so, with why, in a
+# line " * Grading: make grade FULL=1 only (...)".
+full_only() {
+    grep -q '^ \* Grading: make grade FULL=1 only' "$1"
+}
+
 # handout_tests DIR - the handout's stage test sources (tests/stage/*.c).
 handout_tests() {
     for ht_f in "$1"/tests/stage/*.c; do

@@ -858,6 +858,15 @@ test_grade_score() {
         'GRADE lab=05_x score=66.7 lab_passed=2 lab_total=2 controls=1 earlier_passed=0 earlier_total=0 regressions=1 build=ok|'*) ok grade/a-failing-control-costs-points ;;
         *) fail grade/a-failing-control-costs-points "$got" ;;
     esac
+    # A program that only a full grade runs: listed as not run, counted
+    # nowhere (the score is the tests that ran).
+    got=$(gr 'S|05|05_slow' 'P|05|05_x|-' 'T|05|05_x|a|ok')
+    if [ "$got" = 'GRADE lab=05_x score=100.0 lab_passed=1 lab_total=1 controls=0 earlier_passed=0 earlier_total=0 regressions=0 build=ok|controls: none (every test of this lab fails without your work)|' ] &&
+        grep -q '^not run (slow; their bugs are the function tests.* make grade FULL=1 runs them): 05_slow$' "$T/report"; then
+        ok grade/full-only-programs-listed-not-run
+    else
+        fail grade/full-only-programs-listed-not-run "$got" "$(cat "$T/report")"
+    fi
     # The function tests' list: each TEST() of the lab's NN_lab_functions
     # with its status, and a failing one's first message under it.
     printf '%s\n' 'P|05|05_lab_functions|-' 'T|05|05_lab_functions|bvh_intersect_x|FAIL' \

@@ -4,6 +4,9 @@
  * (cornell_diffuse_area, cornell_specular_area, cornell_diffuse_point; the
  * *_gi.pfm files box-downsampled to SIZE x SIZE, as in 07_reference.c).
  *
+ * Grading: make grade FULL=1 only (23 processor s: it tests the tools, not
+ * the student's stage).
+ *
  *  - Two correct renders with different seeds: compare says "consistent"
  *    (exit 0) in every scene.
  *  - The same renders with a planted bias of 2% (one 16x16 block of both

@@ -3,6 +3,9 @@
  * expected image (TESTING.md T23, Nori's test-direct: one reference for
  * every sampling strategy).
  *
+ * Grading: make grade FULL=1 only (24 processor s: the unbiasedness of roulette and emission is
+ * 07_lab_functions' russian_roulette and emitted tests, in milliseconds).
+ *
  *  - Russian roulette and next-event estimation are unbiased, and from
  *    stage 08 on the Sobol sampler and roulette's threshold: --no-rr,
  *    --no-nee and (08) --sampler independent --rr-threshold 1 --no-mis

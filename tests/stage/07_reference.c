@@ -49,6 +49,10 @@
  * Under AddressSanitizer the renders are several times slower: there the
  * images are 64 x 64 (the reference downsampled 4x4) and the power check
  * asks for a 5% bias only (the tests stay valid, with less power).
+ *
+ * Grading: make grade FULL=1 only (18 processor s: the default grade's
+ * paired pages compare the stage with the solution's renders instead, and
+ * make test compares the solution with Mitsuba).
  */
 #include <stdlib.h>
 
