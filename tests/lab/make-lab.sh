@@ -100,7 +100,8 @@ write_stage() {
 
 # The tests: the harness, support code and data, and the stage tests that
 # apply to this stage.  Left out: the unit tests of common/, the lab tools,
-# the trade-off measurements (tests/trade/) and the other stage tests.
+# the trade-off measurements (tests/trade/) and the other stage tests; of
+# the lab tools only the grading scripts (the handout's make grade).
 write_tests() {
     wt_t=$root/tests
     mkdir -p "$tmp/tests/stage"
@@ -120,6 +121,11 @@ write_tests() {
     done
     for wt_f in $(cd "$wt_t" && sh ./harness/select-tests.sh "$nn" stage/*.c); do
         cp "$wt_t/$wt_f" "$tmp/tests/$wt_f"
+    done
+    # The grading scripts, for the handout's own make grade.
+    mkdir -p "$tmp/tests/lab"
+    for wt_f in grade.sh grade.awk grade-pages.sh lablib.sh; do
+        cp "$LAB_DIR/$wt_f" "$tmp/tests/lab/$wt_f"
     done
 }
 

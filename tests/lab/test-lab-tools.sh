@@ -406,6 +406,10 @@ stages/02_b/Makefile
 stages/02_b/main.c
 tests/Makefile
 tests/harness/select-tests.sh
+tests/lab/grade-pages.sh
+tests/lab/grade.awk
+tests/lab/grade.sh
+tests/lab/lablib.sh
 tests/lib/check.h
 tests/reference/r.pfm
 tests/stage/01_a.c
