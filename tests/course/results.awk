@@ -36,8 +36,10 @@ BEGIN {
             np++
             pname[np] = substr(l, 5); sub(/:.*/, "", pname[np])
             ptext[np] = substr(l, 5) "\n"
-            # compare's verdicts that pass: "consistent ...", "within the limit ..."
-            pfailed[np] = (l !~ /^    [^ :]*: (consistent|within)/)
+            # compare's verdicts that pass: "consistent ...", "within the limit ...";
+            # a paired page's line ends with its verdict
+            if (l ~ /, paired with the solution's render /) pfailed[np] = (l !~ /: consistent$/)
+            else pfailed[np] = (l !~ /^    [^ :]*: (consistent|within)/)
             continue
         }
         if (in_pages && l ~ /^        /) {
