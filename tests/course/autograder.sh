@@ -27,10 +27,11 @@
 #
 # Options:
 #   --timeout SEC  time limit of one test program (default 300)
-#   --spp N|auto   samples per pixel of the report pages' renders (grade.sh
-#                  --spp; default auto, as make grade's: a lab-07 grade's
-#                  three pages take about 15 processor minutes; 64: under
-#                  one, finding less; tests/course/README.md)
+#   --spp N|auto|paired  the report pages (grade.sh --spp; default paired,
+#                  as make grade's: the scored paired pages and the Mitsuba
+#                  pages at 16 spp, seconds a page; auto: the calibrated
+#                  Mitsuba pages too, about 12 processor minutes for lab 07;
+#                  N: their samples; tests/course/README.md)
 #   --root DIR     the project (default: this script's)
 #   --help
 # Exit status: 0 written, 1 error, 2 usage.
@@ -43,7 +44,7 @@ LAB_DIR=$COURSE_DIR/../lab
 
 root=$(cd "$COURSE_DIR/../.." && pwd)
 limit=300
-spp=auto
+spp=paired
 parse_options '--timeout limit=VALUE --spp spp=VALUE --root root=DIR' "$@"
 shift "$po_used"
 [ $# -eq 2 ] || usage_error "expected STAGE and OUT, got $# argument(s)"

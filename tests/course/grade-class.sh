@@ -49,8 +49,8 @@
 #                      "--cpus-per-task=1 --mem=2G --time=60")
 #   --timeout SEC      time limit of one test program (default 300); a whole
 #                      grading is stopped after 10 times that
-#   --spp N|auto       samples per pixel of the report pages' renders
-#                      (autograder.sh --spp; default its default, auto)
+#   --spp N|auto|paired  the report pages (autograder.sh --spp; default its
+#                      default, paired)
 #   --root DIR         the project (default: this script's)
 #   --task N           (internal) grade the Nth submission of OUT/tasks
 #   --help

@@ -201,7 +201,7 @@ for c in autograder.sh grade-class.sh; do
     st=0
     # shellcheck disable=SC2086 # the arguments are words
     "$COURSE_DIR/$c" --spp 0x $args >"$T/spp.log" 2>&1 || st=$?
-    [ "$st" -eq 2 ] && grep -q "spp needs a positive number or auto, got '0x'" "$T/spp.log" ||
+    [ "$st" -eq 2 ] && grep -q "spp needs a positive number, auto or paired, got '0x'" "$T/spp.log" ||
         why="$why $c --spp 0x: exit $st, $(cat "$T/spp.log");"
 done
 [ ! -e "$T/spp-out" ] || why="$why autograder.sh wrote $T/spp-out before refusing;"

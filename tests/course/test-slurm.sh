@@ -187,8 +187,8 @@ why=
 grep -q '1 to grade' "$T/class2.log" ||
     why="$why the collect did not grade just the cancelled one: $(grep 'to grade' "$T/class2.log"); the lab's files changed: $(diff "$T/lab-key1" "$O/lab-key.files"); the rows' keys were: $(cut -f 1,2 "$T/results1"), now: $(cat "$O"/students/*/result | cut -f 1,2);"
 [ "$st2" -eq 0 ] || why="$why the collect exited $st2;"
-grep -q -- '--spp auto ' "$O/autograder/run_autograder" ||
-    why="$why the autograder's report pages are not make grade's default (--spp auto);"
+grep -q -- '--spp paired ' "$O/autograder/run_autograder" ||
+    why="$why the autograder's report pages are not make grade's default (--spp paired);"
 [ "$(grep -c . "$O/grades.csv")" -eq 7 ] || why="$why $(grep -c . "$O/grades.csv") lines in the CSV, not 7;"
 [ "$(field untouched 2)" = 0.0 ] || why="$why untouched scores '$(field untouched 2)';"
 [ "$(field solution 2)" = 100.0 ] || why="$why the solution scores '$(field solution 2)';"

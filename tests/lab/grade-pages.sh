@@ -1,7 +1,7 @@
 #!/bin/sh
 # grade-pages.sh - a compare report page for each reference render of a lab.
 #
-#   grade-pages.sh [--help] [--spp N|auto] [--max-spp N] [--records FILE] HANDOUT STAGE OUT
+#   grade-pages.sh [--help] [--spp N|auto|paired] [--max-spp N] [--records FILE] HANDOUT STAGE OUT
 #
 # HANDOUT is a built lab handout (grade.sh's copy), STAGE its stage
 # (05_bvh).  For every Mitsuba reference the stage's tests compare with

@@ -38,8 +38,9 @@
 #   --pages DIR    where the report pages go (default LAB/grade): one
 #                  compare page per reference render (grade-pages.sh)
 #   --no-pages     write no report pages
-#   --spp N|auto   samples per pixel of the pages' renders (grade-pages.sh;
-#                  default grade-pages.sh's, auto: as many as each page
+#   --spp N|auto|paired  the pages (grade-pages.sh; default grade-pages.sh's,
+#                  paired: the scored paired pages and 16-spp Mitsuba
+#                  pages; auto: as many as each Mitsuba page
 #                  needs to find a 2% bias in a 32x32 window, from a pilot
 #                  of GRADE_DEFAULT_SPP, up to GRADE_MAX_SPP; N, e.g. 64,
 #                  for a quicker look that finds less:

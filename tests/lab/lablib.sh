@@ -349,10 +349,11 @@ GRADE_DEFAULT_SPP=64
 GRADE_MAX_SPP=4096
 
 # check_spp N [auto] - usage error unless N (a --spp value) is a positive
-# number, or, with a second argument, the word auto.
+# number, or, with a second argument, the word auto or paired (make
+# grade's default: the paired pages and a 16-spp look, grade-pages.sh).
 check_spp() {
-    [ "$1" = auto ] && [ $# -gt 1 ] && return 0
-    case $1 in '' | 0* | *[!0-9]*) usage_error "--spp needs a positive number${2:+ or auto}, got '$1'" ;; esac
+    case $1 in auto | paired) [ $# -gt 1 ] && return 0 ;; esac
+    case $1 in '' | 0* | *[!0-9]*) usage_error "--spp needs a positive number${2:+, auto or paired}, got '$1'" ;; esac
 }
 
 # spp_for_power FILE SPP MAX - the samples per pixel at which the renders

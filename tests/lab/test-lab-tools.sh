@@ -576,7 +576,7 @@ test_branches() {
 # with its images embedded.
 test_grade_pages() {
     root=$(cd "$LAB_DIR/../.." && pwd)
-    expect_exit grade-pages/spp-must-be-positive 2 "spp needs a positive number or auto, got '0'" \
+    expect_exit grade-pages/spp-must-be-positive 2 "spp needs a positive number, auto or paired, got '0'" \
         "$LAB_DIR/grade-pages.sh" --spp 0 "$root" 06_supersample "$T/pages/none"
     for gp_stage in 03_soft_shadows 06_supersample; do
         if [ ! -x "$root/build/$gp_stage/render" ]; then
@@ -636,7 +636,7 @@ test_grade_pages() {
     else
         fail grade-pages/spp-auto "$(cat "$T/out")"
     fi
-    expect_exit grade-pages/spp-auto-or-number 2 "spp needs a positive number or auto, got 'x'" \
+    expect_exit grade-pages/spp-auto-or-number 2 "spp needs a positive number, auto or paired, got 'x'" \
         "$LAB_DIR/grade-pages.sh" --spp x "$root" 06_supersample "$T/pages/none"
 }
 
