@@ -182,14 +182,19 @@ paired_page() {
         return 0
     fi
     pp_status=0
-    if ! "$render" -q -W 256 -H 256 --spp "$PAIRED_SPP" --seed "$PAIRED_SEED" -o "$work/$1.paired.pfm" \
-        "$dir/scenes/$2.scene" >"$work/render.log" 2>&1; then
+    pp_student=$work/$1.paired.pfm
+    # By default the look's first render has the seed and samples already.
+    if [ "$spp" = paired ] && [ "$PAIRED_SEED" -eq 1 ] && [ -f "$work/$1.1.pfm" ]; then
+        pp_student=$work/$1.1.pfm
+    fi
+    if [ ! -f "$pp_student" ] && ! "$render" -q -W 256 -H 256 --spp "$PAIRED_SPP" --seed "$PAIRED_SEED" \
+        -o "$pp_student" "$dir/scenes/$2.scene" >"$work/render.log" 2>&1; then
         echo "    $1, paired: the render failed:"
         sed -n '1,5s/^/        /p' "$work/render.log"
         pp_status=1
         echo "the render failed: $(head -n 1 "$work/render.log")" >"$work/paired.out"
     else
-        "$dir/build/tools/paired" "$work/$1.paired.pfm" "$pp_solution" >"$work/paired.out" 2>&1 || pp_status=$?
+        "$dir/build/tools/paired" "$pp_student" "$pp_solution" >"$work/paired.out" 2>&1 || pp_status=$?
         echo "    $1, paired with the solution's render ($PAIRED_SPP spp, seed $PAIRED_SEED): $(tail -n 1 "$work/paired.out" | sed 's/^paired: //')"
         sed '$d' "$work/paired.out" | sed -n '1,3s/^  /        /p'
     fi
