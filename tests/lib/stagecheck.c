@@ -9,6 +9,7 @@
 
 #include "metrics.h"
 #include "rng.h"
+#include "scene.h"
 #include "testlib.h"
 
 const char *
@@ -260,4 +261,28 @@ stagecheck_random_unit(struct rng *rng, double out[3])
     out[0] = s * cos(phi);
     out[1] = s * sin(phi);
     out[2] = z;
+}
+
+bool
+stagecheck_load_text(const char *text, struct scene *out)
+{
+    struct diag err;
+    if (!scene_load_string(text, strlen(text), "test.scene", out, &err)) {
+        diag_print(stdout, &err, "error");
+        return false;
+    }
+    return true;
+}
+
+double
+stagecheck_fresnel(double cos_i, double eta)
+{
+    double sin2_t = eta * eta * (1 - cos_i * cos_i);
+    if (sin2_t >= 1) {
+        return 1;
+    }
+    double cos_t = sqrt(1 - sin2_t);
+    double rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    double rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    return (rs * rs + rp * rp) / 2;
 }

@@ -14,6 +14,18 @@
 #include "image.h"
 
 struct rng;
+struct scene;
+
+/* Load a scene from its text (scene_load_string); on an error, print it
+ * (FILE:LINE:COL: error: ...) and return false. */
+bool stagecheck_load_text(const char *text, struct scene *out);
+
+/* The unpolarised Fresnel reflectance of a smooth dielectric boundary from
+ * the textbook (Hecht, Optics, eq. 4.34): the mean of r_s^2 and r_p^2 for
+ * cos_i > 0 on the side the light comes from and eta = eta_i / eta_t; 1
+ * past the critical angle.  Computed here, independently of a stage's
+ * optics.c. */
+double stagecheck_fresnel(double cos_i, double eta);
 
 /* Write a scene file named `name` in the test's temporary directory from a
  * printf format; returns its path (valid until the program ends), or NULL

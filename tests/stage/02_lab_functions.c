@@ -28,17 +28,6 @@
 #include "rng.h"
 #include "stagecheck.h"
 
-static bool
-load(const char *text, struct scene *s)
-{
-    struct diag err;
-    if (!scene_load_string(text, strlen(text), "test.scene", s, &err)) {
-        diag_print(stdout, &err, "error");
-        return false;
-    }
-    return true;
-}
-
 /* A scene of 12 spheres, 12 quads and 12 triangles in the cube [-1, 1]^3. */
 static bool
 random_soup(struct rng *rng, struct scene *s)
@@ -87,7 +76,7 @@ random_soup(struct rng *rng, struct scene *s)
             -c[0] + e2[1],
             c[1] + e2[2]);
     }
-    return load(text, s);
+    return stagecheck_load_text(text, s);
 }
 
 TEST(world_occluded_answers_as_the_closest_hit_does)
@@ -157,7 +146,7 @@ check_spawn(const char *shape, const char *statement, double offset)
         "material m diffuse albedo 0.5 0.5 0.5\n%s\n",
         statement);
     struct scene s;
-    CHECK(load(text, &s));
+    CHECK(stagecheck_load_text(text, &s));
     if (check_current.failed_checks) {
         return;
     }
@@ -273,7 +262,7 @@ check_visible(double plate_y, vec3 to, bool expect, const char *what)
             plate_y);
     }
     struct scene s;
-    CHECK(load(text, &s));
+    CHECK(stagecheck_load_text(text, &s));
     if (check_current.failed_checks) {
         return;
     }

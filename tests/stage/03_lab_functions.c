@@ -162,10 +162,8 @@ room_make(struct room *r, double plate_x)
             "quad corner -2 0.999 -2 edge1 %.17g 0 0 edge2 0 0 4 material black\n",
             plate_x + 2);
     }
-    struct diag err;
     memset(r, 0, sizeof *r);
-    if (!scene_load_string(text, strlen(text), "room.scene", &r->scene, &err)) {
-        diag_print(stdout, &err, "error");
+    if (!stagecheck_load_text(text, &r->scene)) {
         return false;
     }
     r->world = world_make(&r->scene);

@@ -21,39 +21,21 @@
 #include <string.h>
 
 #include "check.h"
+#include "stagecheck.h"
 
 #define TOL (sizeof(real) == sizeof(float) ? 1e-4 : 1e-9)
-
-/* Unpolarised Fresnel reflectance (Hecht, Optics, 4.34), eta = eta_i / eta_t. */
-static double
-fresnel_textbook(double cos_i, double eta)
-{
-    double sin2_t = eta * eta * (1 - cos_i * cos_i);
-    if (sin2_t >= 1) {
-        return 1;
-    }
-    double cos_t = sqrt(1 - sin2_t);
-    double rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    double rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return (rs * rs + rp * rp) / 2;
-}
 
 static bool
 sheet_scene(struct scene *s)
 {
-    static const char text[] =
+    return stagecheck_load_text(
         "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\n"
         "image width 4 height 4\n"
         "material glass glass ior 1.5\n"
         "quad corner -1 -1 0 edge1 2 0 0 edge2 0 2 0 material glass\n"
         "area_light corner -100 -100 5 edge1 0 200 0 edge2 200 0 0 radiance 1 0 0\n"
-        "area_light corner -100 -100 -5 edge1 200 0 0 edge2 0 200 0 radiance 0 1 0\n";
-    struct diag err;
-    if (!scene_load_string(text, strlen(text), "sheet.scene", s, &err)) {
-        diag_print(stdout, &err, "error");
-        return false;
-    }
-    return true;
+        "area_light corner -100 -100 -5 edge1 200 0 0 edge2 0 200 0 radiance 0 1 0\n",
+        s);
 }
 
 static void
@@ -69,7 +51,7 @@ check_sheet(const struct renderer *renderer, double theta_deg, bool from_front)
     CHECK(world_intersect(&renderer->world, r, REAL_MAX, &h, &st) && h.prim == 0);
     const struct material *m = &renderer->scene->materials[h.material];
     vec3 got = shade_glass(renderer, m, r, &h, 1, &rng, &st);
-    double f = fresnel_textbook(cos(th), from_front ? 1 / 1.5 : 1.5);
+    double f = stagecheck_fresnel(cos(th), from_front ? 1 / 1.5 : 1.5);
     /* Reflection goes back to the side the ray came from. */
     double red = from_front ? f : 1 - f;
     double green = from_front ? 1 - f : f;

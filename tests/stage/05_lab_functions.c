@@ -89,11 +89,7 @@ random_soup(struct rng *rng, int n_each, struct scene *s)
             c[0] + e2[1],
             c[1] + e2[2]);
     }
-    struct diag err;
-    bool ok = scene_load_string(text, strlen(text), "soup.scene", s, &err);
-    if (!ok) {
-        diag_print(stdout, &err, "error");
-    }
+    bool ok = stagecheck_load_text(text, s);
     free(text);
     return ok;
 }

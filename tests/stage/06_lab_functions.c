@@ -27,6 +27,7 @@
 
 #include "check.h"
 #include "pathcheck.h"
+#include "stagecheck.h"
 #include "stattest.h"
 #include "warptest.h"
 
@@ -190,10 +191,8 @@ edge_scene_make(struct edge_scene *e, double edge_x, int spp)
         "image width 8 height 8\n"
         "area_light corner -10 -10 0 edge1 %.17g 0 0 edge2 0 20 0 radiance 1 1 1\n",
         edge_x + 10);
-    struct diag err;
     memset(e, 0, sizeof *e);
-    if (!scene_load_string(text, strlen(text), "edge.scene", &e->scene, &err)) {
-        diag_print(stdout, &err, "error");
+    if (!stagecheck_load_text(text, &e->scene)) {
         return false;
     }
     e->renderer.scene = &e->scene;

@@ -311,21 +311,6 @@ TEST(sample_bsdf_blend_picks_lobes_by_reflectance_and_is_unbiased)
         q.ended);
 }
 
-/* Unpolarised Fresnel reflectance from the textbook (Hecht, Optics, 4.34):
- * cos_i > 0 on the side the light comes from, eta = eta_i / eta_t. */
-static double
-fresnel_textbook(double cos_i, double eta)
-{
-    double sin_t2 = eta * eta * (1 - cos_i * cos_i);
-    if (sin_t2 >= 1) {
-        return 1;
-    }
-    double cos_t = sqrt(1 - sin_t2);
-    double rs = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    double rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    return (rs * rs + rp * rp) / 2;
-}
-
 /* Glass of index 1.5 hit at angle theta_deg from the front (entering) or
  * the back (leaving). */
 static void
@@ -338,7 +323,7 @@ check_glass(double theta_deg, bool front_face)
     double th = theta_deg * 3.14159265358979323846 / 180;
     vec3 d = vec3_normalize(vec3_sub((vec3){(real)sin(th), 0, 0}, vec3_scale(n, (real)cos(th))));
     double eta = front_face ? 1 / 1.5 : 1.5;
-    double f = fresnel_textbook(cos(th), eta);
+    double f = stagecheck_fresnel(cos(th), eta);
     struct lobe_means q = quadrature(&m, vec3_splat(0), &h, d);
     const char *side = front_face ? "entering" : "leaving";
     double reflected = 1 - q.refracted - q.ended;
@@ -420,15 +405,11 @@ TEST(sample_bsdf_glass_reflects_with_the_fresnel_probability)
 static bool
 light_scene(struct scene *s)
 {
-    static const char text[] = "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\n"
-                               "image width 8 height 8\n"
-                               "area_light corner -1 -1 0 edge1 2 0 0 edge2 0 2 0 radiance 4 2 1\n";
-    struct diag err;
-    if (!scene_load_string(text, strlen(text), "light.scene", s, &err)) {
-        diag_print(stdout, &err, "error");
-        return false;
-    }
-    return true;
+    return stagecheck_load_text(
+        "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\n"
+        "image width 8 height 8\n"
+        "area_light corner -1 -1 0 edge1 2 0 0 edge2 0 2 0 radiance 4 2 1\n",
+        s);
 }
 
 TEST(emitted_counts_light_only_where_nee_cannot_find_it)
