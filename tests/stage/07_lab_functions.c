@@ -355,19 +355,24 @@ check_glass(double theta_deg, bool front_face)
             continue; /* reported above */
         }
         bool refracted = bs.d.z * d.z > 0;
+        char where[200];
+        snprintf(
+            where,
+            sizeof where,
+            "sample_bsdf (glass, %s at %.0f deg, u[0] %.4f, F %.4f): d (%g %g %g)",
+            side,
+            theta_deg,
+            (double)u[0],
+            f,
+            (double)bs.d.x,
+            (double)bs.d.y,
+            (double)bs.d.z);
         if (k == 0 || f >= 1) {
             vec3 mirror = {d.x, d.y, -d.z};
             CHECK_MSG(
                 !refracted && vec3_near(bs.d, mirror, 1e3 * TOL),
-                "sample_bsdf (glass, %s at %.0f deg, u[0] %.4f < F %.4f): d (%g %g %g), not the mirror "
-                "direction (%g %g %g)",
-                side,
-                theta_deg,
-                (double)u[0],
-                f,
-                (double)bs.d.x,
-                (double)bs.d.y,
-                (double)bs.d.z,
+                "%s, not the mirror direction (%g %g %g) of u[0] < F",
+                where,
                 (double)mirror.x,
                 (double)mirror.y,
                 (double)mirror.z);
@@ -376,15 +381,8 @@ check_glass(double theta_deg, bool front_face)
             CHECK_MSG(
                 refracted && fabs((double)bs.d.x - sin_t) < 1e3 * TOL
                     && fabs((double)bs.d.y) < 1e3 * TOL,
-                "sample_bsdf (glass, %s at %.0f deg, u[0] %.4f >= F %.4f): d (%g %g %g); Snell's "
-                "law gives sin(theta_t) = %.5f on the far side",
-                side,
-                theta_deg,
-                (double)u[0],
-                f,
-                (double)bs.d.x,
-                (double)bs.d.y,
-                (double)bs.d.z,
+                "%s, where u[0] >= F refracts: Snell's law gives sin(theta_t) = %.5f on the far side",
+                where,
                 sin_t);
         }
     }
