@@ -21,7 +21,8 @@
  * pixels, and the solution's mean m.  The block is "off" when |mean d| exceeds F |m| (the
  * minimum effect, default 0.01: a difference of floating-point order or a
  * fraction of a percent is never a failure) by more than z standard
- * errors, z the normal quantile of alpha (default 0.01) Sidak-corrected
+ * errors, z Student's t quantile (pixels - 1 degrees of freedom) of alpha
+ * (default 0.01) Sidak-corrected
  * for the number of blocks and channels.  A block whose d is exactly 0 is
  * identical.
  *
@@ -129,26 +130,9 @@ pairing_ratio(const struct image *s, const struct image *r)
     return ns + nr > 0 ? nd * nd / (ns * ns + nr * nr) : 0;
 }
 
-/* The z with P(Z > z) = p for a standard normal Z, by bisection. */
-static double
-upper_quantile(double p)
-{
-    double lo = 0;
-    double hi = 40;
-    for (int i = 0; i < 200; i++) {
-        double mid = (lo + hi) / 2;
-        if (1 - stattest_normal_cdf(mid) > p) {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    return (lo + hi) / 2;
-}
-
 struct block_result {
     int x, y, c;
-    double mean_d, se, mean_r, excess; /* excess: (|mean d| - F |m|) / se */
+    double mean_d, se, mean_r, excess; /* (|mean d| - F |m|) / se, less the block's critical t */
 };
 
 static int
@@ -193,8 +177,6 @@ main(int argc, char **argv)
     int by = (s.height + o.block - 1) / o.block;
     int tests = bx * by * 3;
     double level = stattest_sidak(o.alpha, tests);
-    /* One-sided: the block is off only when it exceeds the effect. */
-    double z = upper_quantile(level);
     struct block_result *res = calloc((size_t)tests, sizeof *res);
     if (!res) {
         fputs("paired: out of memory\n", stderr);
@@ -220,17 +202,20 @@ main(int argc, char **argv)
                 double se = n > 1 ? sqrt(stattest_welford_var_of_mean(&wd)) : 0;
                 double gap = fabs(wd.mean) - o.effect * fabs(mean_r);
                 double excess = gap <= 0 ? -INFINITY : se > 0 ? gap / se : INFINITY;
+                /* One-sided: the block is off only when it exceeds the
+                 * effect by more than Student's t quantile of its pixels. */
+                double z = n > 1 ? stattest_t_critical(2 * level, n - 1) : INFINITY;
                 if (!isfinite(wd.mean)) {
                     excess = INFINITY; /* a NaN or an infinity is never consistent */
                 }
-                res[n_res++] = (struct block_result){i, j, c, wd.mean, se, mean_r, excess};
+                res[n_res++] = (struct block_result){i, j, c, wd.mean, se, mean_r, excess - z};
                 off += excess > z;
             }
         }
     }
     qsort(res, (size_t)n_res, sizeof *res, by_excess);
     static const char *const channel[] = {"red", "green", "blue"};
-    for (int k = 0; k < n_res && k < 10 && res[k].excess > z; k++) {
+    for (int k = 0; k < n_res && k < 10 && res[k].excess > 0; k++) {
         printf(
             "  block x %d-%d, y %d-%d, %s: the student's mean differs by %+.3g (%+.2f%% of %.4g), +- %.2g\n",
             res[k].x * o.block,
