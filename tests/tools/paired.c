@@ -18,13 +18,12 @@
  * For each N x N block (default 16: any 32x32 square holds a whole one, so
  * a bias in a 32x32 square is a bias of at least one block) and channel:
  * the mean of d, its standard error from d's spread over the block's
- * pixels, and the solution's mean m.  The block is "off" when |mean d| exceeds F |m| (the
- * minimum effect, default 0.01: a difference of floating-point order or a
- * fraction of a percent is never a failure) by more than z standard
- * errors, z Student's t quantile (pixels - 1 degrees of freedom) of alpha
- * (default 0.01) Sidak-corrected
- * for the number of blocks and channels.  A block whose d is exactly 0 is
- * identical.
+ * pixels, and the solution's mean m.  The block is "off" when |mean d|
+ * exceeds F |m| (the minimum effect, default 0.01: a difference of
+ * floating-point order or a fraction of a percent is never a failure) by
+ * more than t standard errors, t Student's quantile (pixels - 1 degrees of
+ * freedom) of alpha (default 0.01) Sidak-corrected for the number of
+ * blocks and channels.  A block whose d is exactly 0 is identical.
  *
  * Pairing: the ratio of d's noise variance to the sum of the two renders'
  * (Immerkaer's estimator, which cancels most of an image's structure):
