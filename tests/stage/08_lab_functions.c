@@ -16,9 +16,8 @@
  *  - random over seeds: the first 6 digits of one input's scramble over
  *    16,384 seeds are uniform (chi-square, 64 bins), and two seeds give
  *    different scrambles;
- *  - the points stay a net: the first 2^m points of lowdisc_point2, for
- *    m = 1..8 and 8 seeds, put one point in each cell of every 2^a x
- *    2^(m-a) grid.
+ *  - (that the points stay (0,m,2)-nets is 08_lowdisc's
+ *    first_points_and_aligned_blocks_are_nets, not repeated here).
  * The chi-square test is at alpha 0.01; seeds from pathcheck_seed().
  */
 #include <stdio.h>
@@ -121,37 +120,7 @@ TEST(lowdisc_scramble_reversed_is_uniform_over_seeds)
     warptest_free(&w);
 }
 
-TEST(lowdisc_scramble_reversed_keeps_the_points_a_net)
-{
-    for (uint64_t seed = 1; seed <= 8; seed++) {
-        for (int m = 1; m <= 8; m++) {
-            int n = 1 << m;
-            for (int a = 0; a <= m; a++) {
-                unsigned char seen[256] = {0};
-                for (int i = 0; i < n; i++) {
-                    real u;
-                    real v;
-                    lowdisc_point2((uint32_t)i, rng_mix64(seed), &u, &v);
-                    int cell = (int)(v * (1 << (m - a))) * (1 << a) + (int)(u * (1 << a));
-                    if (!(u >= 0 && u < 1 && v >= 0 && v < 1) || seen[cell]++) {
-                        CHECK_FAIL(
-                            "lowdisc_scramble_reversed (through lowdisc_point2, seed %d): the first %d points "
-                            "put two in one cell of the %d x %d grid: a nested scramble keeps Sobol's points "
-                            "a (0,m,2)-net",
-                            (int)seed,
-                            n,
-                            1 << a,
-                            1 << (m - a));
-                        return;
-                    }
-                }
-            }
-        }
-    }
-}
-
 TEST_MAIN(
     TEST_ENTRY(lowdisc_scramble_reversed_is_nested),
     TEST_ENTRY(lowdisc_scramble_reversed_flips_by_the_digits_before),
-    TEST_ENTRY(lowdisc_scramble_reversed_is_uniform_over_seeds),
-    TEST_ENTRY(lowdisc_scramble_reversed_keeps_the_points_a_net))
+    TEST_ENTRY(lowdisc_scramble_reversed_is_uniform_over_seeds))
