@@ -142,40 +142,15 @@ by_excess(const void *a, const void *b)
     return (ea < eb) - (ea > eb);
 }
 
-int
-main(int argc, char **argv)
+/* The verdict on two images of one size: 0 consistent, 1 biased, 2 out of
+ * memory.  The caller owns (and frees) the images. */
+static int
+compare_images(const struct options *o, const struct image *s, const struct image *r)
 {
-    struct options o;
-    if (argc == 2 && strcmp(argv[1], "--help") == 0) {
-        usage(stdout);
-        return 0;
-    }
-    if (!parse(argc, argv, &o)) {
-        return usage(stderr);
-    }
-    struct image s = {0};
-    struct image r = {0};
-    struct diag err;
-    if (!imgread(o.student, &s, &err) || !imgread(o.solution, &r, &err)) {
-        diag_print(stderr, &err, "error");
-        return 2;
-    }
-    if (s.width != r.width || s.height != r.height) {
-        fprintf(
-            stderr,
-            "paired: %s is %dx%d, %s %dx%d\n",
-            o.student,
-            s.width,
-            s.height,
-            o.solution,
-            r.width,
-            r.height);
-        return 2;
-    }
-    int bx = (s.width + o.block - 1) / o.block;
-    int by = (s.height + o.block - 1) / o.block;
+    int bx = (s->width + o->block - 1) / o->block;
+    int by = (s->height + o->block - 1) / o->block;
     int tests = bx * by * 3;
-    double level = stattest_sidak(o.alpha, tests);
+    double level = stattest_sidak(o->alpha, tests);
     struct block_result *res = calloc((size_t)tests, sizeof *res);
     if (!res) {
         fputs("paired: out of memory\n", stderr);
@@ -189,17 +164,17 @@ main(int argc, char **argv)
                 struct stattest_welford wd = {0};
                 double sum_r = 0;
                 int n = 0;
-                for (int y = j * o.block; y < (j + 1) * o.block && y < s.height; y++) {
-                    for (int x = i * o.block; x < (i + 1) * o.block && x < s.width; x++) {
-                        size_t k = ((size_t)y * (size_t)s.width + (size_t)x) * 3 + (size_t)c;
-                        stattest_welford_add(&wd, (double)s.rgb[k] - (double)r.rgb[k]);
-                        sum_r += r.rgb[k];
+                for (int y = j * o->block; y < (j + 1) * o->block && y < s->height; y++) {
+                    for (int x = i * o->block; x < (i + 1) * o->block && x < s->width; x++) {
+                        size_t k = ((size_t)y * (size_t)s->width + (size_t)x) * 3 + (size_t)c;
+                        stattest_welford_add(&wd, (double)s->rgb[k] - (double)r->rgb[k]);
+                        sum_r += r->rgb[k];
                         n++;
                     }
                 }
                 double mean_r = sum_r / n;
                 double se = n > 1 ? sqrt(stattest_welford_var_of_mean(&wd)) : 0;
-                double gap = fabs(wd.mean) - o.effect * fabs(mean_r);
+                double gap = fabs(wd.mean) - o->effect * fabs(mean_r);
                 double excess = gap <= 0 ? -INFINITY : se > 0 ? gap / se : INFINITY;
                 /* One-sided: the block is off only when it exceeds the
                  * effect by more than Student's t quantile of its pixels. */
@@ -217,27 +192,60 @@ main(int argc, char **argv)
     for (int k = 0; k < n_res && k < 10 && res[k].excess > 0; k++) {
         printf(
             "  block x %d-%d, y %d-%d, %s: the student's mean differs by %+.3g (%+.2f%% of %.4g), +- %.2g\n",
-            res[k].x * o.block,
-            res[k].x * o.block + o.block - 1,
-            res[k].y * o.block,
-            res[k].y * o.block + o.block - 1,
+            res[k].x * o->block,
+            res[k].x * o->block + o->block - 1,
+            res[k].y * o->block,
+            res[k].y * o->block + o->block - 1,
             channel[res[k].c],
             res[k].mean_d,
             res[k].mean_r != 0 ? 100 * res[k].mean_d / res[k].mean_r : 0.0,
             res[k].mean_r,
             res[k].se);
     }
-    double ratio = pairing_ratio(&s, &r);
+    double ratio = pairing_ratio(s, r);
     printf(
         "paired: %.3f (%s), %d of %d blocks and channels off by more than %g%%: %s\n",
         ratio,
         ratio < 0.5 ? "paired" : "unpaired: as two independent renders",
         off,
         tests,
-        100 * o.effect,
+        100 * o->effect,
         off > 0 ? "biased" : "consistent");
     free(res);
+    return off > 0;
+}
+
+int
+main(int argc, char **argv)
+{
+    struct options o;
+    if (argc == 2 && strcmp(argv[1], "--help") == 0) {
+        usage(stdout);
+        return 0;
+    }
+    if (!parse(argc, argv, &o)) {
+        return usage(stderr);
+    }
+    struct image s = {0};
+    struct image r = {0};
+    struct diag err;
+    int status = 2;
+    if (!imgread(o.student, &s, &err) || !imgread(o.solution, &r, &err)) {
+        diag_print(stderr, &err, "error");
+    } else if (s.width != r.width || s.height != r.height) {
+        fprintf(
+            stderr,
+            "paired: %s is %dx%d, %s %dx%d\n",
+            o.student,
+            s.width,
+            s.height,
+            o.solution,
+            r.width,
+            r.height);
+    } else {
+        status = compare_images(&o, &s, &r);
+    }
     image_free(&s);
     image_free(&r);
-    return off > 0;
+    return status;
 }
