@@ -185,6 +185,11 @@ branches:
 	@if [ -z "$(OUT)" ]; then echo "usage: make branches OUT=path [FORCE=1]" >&2; exit 2; fi
 	@tests/lab/make-branches.sh $(if $(filter 1,$(FORCE)),--force) "$(OUT)"
 
+# What make grade costs in each lab's handout, first and again, and its
+# score beside busy loops (tests/lab/grade-cost.sh; LABS="07 08" for some).
+grade-cost:
+	@tests/lab/grade-cost.sh $(LABS)
+
 check-labs: all
 	@tests/lab/check-labs.sh --full $(CHECK_LABS_FLAGS)
 
@@ -229,6 +234,7 @@ help:
 	'make diffs            docs/diffs/*.diff and the diff table of docs/README.md' \
 	'make branches OUT=dir the stages as a git repository, one commit per stage (FORCE=1 replaces)' \
 	'make check-labs       every check of every lab handout' \
+	'make grade-cost       what make grade costs in each lab (processor s), idle and loaded' \
 	'make reference-masks  tests/reference/*.feature.pfm: the reference scenes'"'"' regions, for make grade' \
 	'make clean            remove build/' \
 	'make help             this list' \
@@ -236,4 +242,4 @@ help:
 	'Knobs, with any target: REAL=float (single precision, in build/float/: make REAL=float test),' \
 	'WERROR=1 (warnings are errors), OPENEXR=0|1, TINYGLTF=0|1, CFLAGS=... (common/config.mk)'
 
-.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate calibrate-functions test-seeds unseen docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs reference-masks help $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate calibrate-functions test-seeds unseen docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs grade-cost reference-masks help $(STAGES)
