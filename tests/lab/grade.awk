@@ -13,6 +13,10 @@
 #   S FROM PROGRAM               a test program not run: only a full grade
 #                                runs it (grade.sh --full); listed, its
 #                                tests neither passed nor failed
+#   R FROM PROGRAM TEST          a statistical TEST() that failed at its
+#                                first seed and passed at the grade's second
+#                                (grade.sh, second_seed): its T line says
+#                                ok; the report names it
 #   M FROM PROGRAM TEST MESSAGE  the first failure message of a failing
 #                                TEST() of a function test program
 #                                (NN_lab_functions: each TEST() is named for
@@ -48,6 +52,8 @@ $1 == "P" {
 }
 
 $1 == "M" { message[$3 SUBSEP $4] = $5; next }
+
+$1 == "R" { second = second (second != "" ? ", " : "") $3 "/" $4; next }
 
 $1 == "S" { not_run = not_run (not_run != "" ? ", " : "") $3; next }
 
@@ -131,6 +137,8 @@ END {
         for (i = 1; i <= n; i++) if (from[i] == g) line(i)
         printf "    %-32s %4d/%d\n", "total", gp[g], gt[g]
     }
+    if (second != "")
+        printf "\npassed at the second seed (failed at the first: chance, at each test's level; a bug fails at both): %s\n", second
     if (not_run != "")
         printf "\nnot run (slow; their bugs are the function tests' and the pages'; make grade FULL=1 runs them): %s\n", not_run
     reg = et - ep + cfailed

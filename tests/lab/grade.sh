@@ -201,8 +201,11 @@ for src in $(handout_tests "$dir"); do
             test_statuses "$src" "$work/$name.$t.log" "$note" | awk -v t="$t" '$1 == t'
         done
     else
-        test_statuses "$src" "$work/$name.log" "$5"
-    fi | awk -v from="$from" -v name="$name" '{ printf "T\t%s\t%s\t%s\t%s\n", from, name, $1, $2 }' >>"$work/records"
+        test_statuses "$src" "$work/$name.log" "$5" | second_seed "$dir" "$src" "$work/$name" "$limit"
+    fi | awk -v from="$from" -v name="$name" '{
+        printf "T\t%s\t%s\t%s\t%s\n", from, name, $1, $2
+        if ($3 == "second") printf "R\t%s\t%s\t%s\n", from, name, $1
+    }' >>"$work/records"
     # The function tests' first failure message of each failing TEST(), for
     # the report's list of the lab's functions (M records, grade.awk).
     case $name in

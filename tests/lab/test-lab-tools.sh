@@ -914,6 +914,39 @@ EOF2
     same controls/crashed-program-rerun-per-test "$T/controls.expected" "$T/controls"
 }
 
+# --- the second seed: second_seed (lablib.sh) and grade.awk's R records -----
+# A statistical program's failing TEST() is run again at GRADE_SECOND_SEED:
+# a chance failure (a passes there) counts as passed and is named in the
+# report; a bug (b fails there too) stays failed; a deterministic
+# program's failure is not run again.
+test_second_seed() {
+    ss=$T/second-handout
+    mkdir -p "$ss/stages/05_x" "$ss/tests/stage" "$ss/build/tests/05_x"
+    printf 'TEST(a) {}\nTEST(b) {}\nuint64_t s = pathcheck_seed(1);\n' >"$ss/tests/stage/05_x.c"
+    printf 'TEST(a) {}\n' >"$ss/tests/stage/05_det.c"
+    cat >"$ss/build/tests/05_x/05_x" <<EOF2
+#!/bin/sh
+if [ "\${PATHCHECK_SEED:-}" = $GRADE_SECOND_SEED ] && [ "\${1:-}" = a ]; then
+    printf 'ok   a\n1 passed, 0 failed, 0 skipped\n'
+else
+    printf 'FAIL %s\n0 passed, 1 failed, 0 skipped\n' "\${1:-a}"; exit 1
+fi
+EOF2
+    cp "$ss/build/tests/05_x/05_x" "$ss/build/tests/05_x/05_det"
+    chmod +x "$ss/build/tests/05_x/05_x" "$ss/build/tests/05_x/05_det"
+    printf 'a FAIL\nb FAIL\n' | second_seed "$ss" "$ss/tests/stage/05_x.c" "$T/second" 5 >"$T/second.out" 2>&1
+    printf 'a FAIL\n' | second_seed "$ss" "$ss/tests/stage/05_det.c" "$T/second-det" 5 >>"$T/second.out" 2>&1
+    printf 'a ok second\nb FAIL\na FAIL\n' >"$T/second.expected"
+    same grade/second-seed-reruns-statistical-failures "$T/second.expected" "$T/second.out"
+    printf '%s\n' 'P|05|05_x|-' 'T|05|05_x|a|ok' 'R|05|05_x|a' 'T|05|05_x|b|FAIL' | tr '|' '\t' >"$T/records"
+    awk -v nn=05 -v stage=05_x -v build=ok -v controls=unknown -f "$LAB_DIR/grade.awk" "$T/records" >"$T/report"
+    if grep -q '^passed at the second seed (.*): 05_x/a$' "$T/report" && grep -q '^GRADE .* score=50.0 ' "$T/report"; then
+        ok grade/second-seed-named-in-the-report
+    else
+        fail grade/second-seed-named-in-the-report "$(cat "$T/report")"
+    fi
+}
+
 # make calibrate's planted code bugs (sed expressions on stage 07's
 # sources) still change what they name: stage 07 moved on once under them.
 test_calibrate_plants() {
@@ -977,6 +1010,7 @@ fi
 test_options
 test_grade_score
 test_controls
+test_second_seed
 test_grade_pages
 test_spp_for_power
 test_docs_images
