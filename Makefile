@@ -126,10 +126,19 @@ trade: all
 bench: all
 	@$(MAKE) --no-print-directory -C tests/bench run
 
-# How often each verdict a learner sees calls correct work biased, and how
-# often it finds planted biases -> docs/calibration/ (tests/calibrate/).
-# CALIBRATE_FLAGS: the script's options, e.g. --size 256 --sets 50.
+# Every verdict of every lab's default grade: how often it fails correct
+# work, how often its paired pages find a 2% bias, the bug catalogue
+# (tests/calibrate/grades.sh; about 1 processor-hour, the table into
+# docs/calibration/README.md).  QUICK=1: 6 sets a lab, a check (CI).
 calibrate: all
+	@tests/calibrate/grades.sh $(if $(filter 1,$(QUICK)),--quick,--write) $(if $(SETS),--sets $(SETS))
+
+# How often compare's verdicts (compare, its regions, the Mitsuba pages of
+# make grade SPP=N|auto, check-planted's controls) call correct work
+# biased, and how often they find planted biases -> docs/calibration/
+# (tests/calibrate/calibrate.sh; hours).  CALIBRATE_FLAGS: the script's
+# options, e.g. --size 256 --sets 50.
+calibrate-compare: all
 	@tests/calibrate/calibrate.sh $(CALIBRATE_FLAGS)
 
 # The statistical stage tests under SEEDS other seeds each (TESTING.md):
@@ -221,7 +230,8 @@ help:
 	'make gallery          scenes/README.md: every scene of the library, rendered (scenes/make-gallery.sh)' \
 	'make trade            speed against accuracy of every stage (docs/trade/; QUICK=1: short)' \
 	'make bench            BVH build and trace rates, against brute force and Embree' \
-	'make calibrate        false-alarm and detection rates of every verdict (docs/calibration/)' \
+	'make calibrate        every lab grade'\''s false alarms and detections, about 1 processor-hour (QUICK=1: CI'\''s check)' \
+	'make calibrate-compare  false-alarm and detection rates of compare'\''s verdicts (docs/calibration/; hours)' \
 	'make calibrate-functions  false-alarm rates of the labs'\'' statistical function tests (SEEDS=2000)' \
 	'make test-seeds       the statistical stage tests under SEEDS (20) other seeds: failure rates' \
 	'make unseen           every stage on random scenes at random scales; the path tracers against Mitsuba 3' \
@@ -242,4 +252,4 @@ help:
 	'Knobs, with any target: REAL=float (single precision, in build/float/: make REAL=float test),' \
 	'WERROR=1 (warnings are errors), OPENEXR=0|1, TINYGLTF=0|1, CFLAGS=... (common/config.mk)'
 
-.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate calibrate-functions test-seeds unseen docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs grade-cost reference-masks help $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate calibrate-compare calibrate-functions test-seeds unseen docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs grade-cost reference-masks help $(STAGES)

@@ -1,6 +1,6 @@
 #!/bin/sh
 # calibrate.sh - how often each verdict a learner sees says "biased" on
-# correct work, and how often it finds a planted bias (make calibrate).
+# correct work, and how often it finds a planted bias (make calibrate-compare).
 #
 #   calibrate.sh [options]
 #
@@ -232,13 +232,8 @@ BASE=100000
 # tally VERDICT SCENE BIAS PCT SETS BIASED RENDERS SECONDS: a CSV row with
 # the rate and its Wilson 95% interval (Wilson, JASA 22, 1927).
 tally() {
-    awk -v v="$1" -v sc="$2" -v b="$3" -v pct="$4" -v n="$5" -v k="$6" -v r="$7" -v s="$8" 'BEGIN {
-        z = 1.959964; p = k / n
-        c = (p + z * z / (2 * n)) / (1 + z * z / n)
-        h = z / (1 + z * z / n) * sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-        lo = c - h; hi = c + h; if (lo < 0 || k == 0) lo = 0; if (hi > 1 || k == n) hi = 1
-        printf "%s,%s,%s,%s,%d,%d,%.4f,%.4f,%.4f,%d,%.1f\n", v, sc, b, pct, n, k, p, lo, hi, r, s
-    }' >>"$csv"
+    set -- "$@" $(wilson "$6" "$5")
+    printf '%s,%s,%s,%s,%d,%d,%.4f,%.4f,%.4f,%d,%.1f\n' "$1" "$2" "$3" "$4" "$5" "$6" "$9" "${10}" "${11}" "$7" "$8" >>"$csv"
 }
 
 has_verdict() {
@@ -255,19 +250,6 @@ judge() {
     "$compare" -q "$@" >"$work/verdict" 2>&1 || jd_status=$?
     [ "$jd_status" -le 1 ] || die "compare failed: $(cat "$work/verdict")"
     echo "$jd_status" >>"$jd_out"
-}
-
-# plant_rect SET: "X,Y,32,32", the rectangle of set i (the same for every
-# verdict and scene of the set): point i + 1 of Roberts' R2 sequence
-# (additive recurrence with the plastic number, 2018), so that any number
-# of sets spreads its rectangles evenly over the image.  (awk's rand()
-# right after srand(seed) is nearly linear in the seed in mawk: seeding
-# per set put the first sets' rectangles in one band.)
-plant_rect() {
-    awk -v i="$1" -v n="$size" 'BEGIN { w = (n < 32 ? n : 32)
-        u = 0.5 + 0.7548776662466927 * (i + 1); v = 0.5 + 0.5698402909980532 * (i + 1)
-        u -= int(u); v -= int(v)
-        printf "%d,%d,%d,%d", int(u * (n - w + 1)), int(v * (n - w + 1)), w, w }'
 }
 
 # planted SET FACTOR RECT IN...: the inputs scaled, as $work/p.N.pfm.
@@ -371,7 +353,7 @@ for scene in $scenes; do
             judge "$work/compare-4" "$dir/$((BASE + 4 * i)).pfm" "$dir/$((BASE + 4 * i + 1)).pfm" \
                 "$dir/$((BASE + 4 * i + 2)).pfm" "$dir/$((BASE + 4 * i + 3)).pfm" "$ref"
         fi
-        rect=$(plant_rect "$i")
+        rect=$(plant_rect "$i" "$size")
         if has_verdict grade-auto && ! ledger_has "$scene" "$lkey" "$i"; then
             # The pilot is the set's pair; the spp it asks for, a pair of its own.
             pool_renders "$render" "$dir" "$scene" "$spp" $((BASE + 2 * i)) 2

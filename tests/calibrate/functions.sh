@@ -31,12 +31,9 @@ echo "|---|--:|--:|---|--:|"
 for src in $(grep -l 'pathcheck_seed(' "$root"/tests/stage/*_lab_functions.c); do
     name=$(basename "$src" .c)
     "$root/tests/calibrate/seed-offsets.sh" --stage "$(test_from "$src")" "$n" "$name" 2>/dev/null |
-        awk '{
-            n = $2; k = $3; z = 1.959964; p = k / n
-            c = (p + z * z / (2 * n)) / (1 + z * z / n)
-            h = z / (1 + z * z / n) * sqrt(p * (1 - p) / n + z * z / (4 * n * n))
-            lo = (k == 0 || c - h < 0) ? 0 : c - h; hi = c + h > 1 ? 1 : c + h
-            split($1, w, "@")
-            printf "| `%s` | %d | %d | %.2f%% (%.2f%%-%.2f%%) | %d |\n", w[1], n, k, 100 * p, 100 * lo, 100 * hi, $4
-        }'
+        while read -r prog runs k secs; do
+            set -- $(wilson "$k" "$runs")
+            awk -v prog="${prog%@*}" -v n="$runs" -v k="$k" -v p="$1" -v lo="$2" -v hi="$3" -v s="$secs" 'BEGIN {
+                printf "| `%s` | %d | %d | %.2f%% (%.2f%%-%.2f%%) | %d |\n", prog, n, k, 100 * p, 100 * lo, 100 * hi, s }'
+        done
 done

@@ -1,6 +1,6 @@
 #!/bin/sh
 # seed-offsets.sh - the statistical stage tests under other seeds: how often
-# each fails on correct code (make calibrate --seed-offsets N).
+# each fails on correct code (make calibrate-compare --seed-offsets N).
 #
 #   seed-offsets.sh [--help] [--stage NN] N [PROGRAM...]
 #

@@ -1,4 +1,4 @@
-# table.awk - the Markdown tables of make calibrate, from its CSV.
+# table.awk - the Markdown tables of make calibrate-compare, from its CSV.
 #
 #   awk -F, -v size=64 -v spp=64 -f table.awk calibration.csv
 #

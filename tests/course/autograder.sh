@@ -97,13 +97,17 @@ with zipfile.ZipFile(sys.argv[1], "w", zipfile.ZIP_DEFLATED) as z:
 PY
 ) || die "could not write $out/autograder.zip"
 mv "$out/autograder.zip.tmp" "$out/autograder.zip"
-# The points: the lab's tests less its controls (grade-class.sh reads them too).
+# The points: the lab's tests less its controls, and its paired pages
+# (scored tests of the lab too; grade-class.sh reads the total).
 total=0
 for src in $(handout_tests "$dest/handout"); do
     [ "$(test_from "$src")" = "${stage%%_*}" ] || continue
     for t in $(test_names "$src"); do
         grep -qx "$(basename "$src" .c) $t" "$dest/controls" || total=$((total + 1))
     done
+done
+for scene in $(paired_scenes "${stage%%_*}"); do
+    [ ! -f "$dest/handout/tests/reference/solution/$scene.pfm" ] || total=$((total + 1))
 done
 echo "$total" >"$dest/lab-total"
 echo "$PROG: wrote $out/autograder.zip (lab ${stage%%_*}, $stage): upload it in Gradescope's Configure Autograder;"

@@ -6,7 +6,7 @@
 # HANDOUT is a handout being written (make-lab.sh's), CONTROLS the lab's
 # controls ("PROGRAM TEST" lines, tests/course/controls/NN_name; "-": none
 # known).  Writes, for every TEST() of the lab's own tests, in the order of
-# its sources:
+# its sources, and every paired page of the lab (pages/PAGE_paired):
 #   .github/classroom/autograding.json   the test list of GitHub Classroom's
 #       autograding action: {"tests": [{"name", "setup", "run", "input",
 #       "output", "comparison", "timeout" (minutes), "points"}]}
@@ -15,8 +15,9 @@
 #       .devcontainer/packages, the build, then one command-grader step per
 #       test (test-name, command, timeout, max-score) and the reporter,
 #       whose runners are the steps' ids
-# Each test runs as `make check TEST=PROGRAM/NAME` (the handout's Makefile)
-# and scores 1 point when it passes; a control (it passes without the
+# Each test runs as `make check TEST=PROGRAM/NAME` (the handout's Makefile,
+# tests/lab/check-one.sh: counted as make grade counts it, a statistical
+# test's failure at the second seed too) and scores 1 point when it passes; a control (it passes without the
 # student's work: make grade lists it unscored) is listed with 0 points.  So
 # the points total is make grade's lab_total, and a student's points its
 # lab_passed.
@@ -42,6 +43,12 @@ for src in $(handout_tests "$dir"); do
 done | awk -v controls="$controls" '
     BEGIN { while ((getline l < controls) > 0) { split(l, w, " "); c[w[1] " " w[2]] = 1 } }
     { print $1, $2, (($1 " " $2) in c ? 0 : 1) }' >"$dir/.classroom-tests"
+# ... and its paired pages (scored as make grade scores them), where the
+# handout carries the solution's render.
+for scene in $(paired_scenes "$nn"); do
+    [ ! -f "$dir/tests/reference/solution/$scene.pfm" ] ||
+        echo "pages $(paired_page_name "$nn" "$scene")_paired 1" >>"$dir/.classroom-tests"
+done
 
 mkdir -p "$dir/.github/classroom" "$dir/.github/workflows"
 awk '

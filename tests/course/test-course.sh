@@ -106,6 +106,10 @@ if "$root/tests/lab/make-lab.sh" --quiet 02 "$T/lab" >"$T/make-lab.log" 2>&1; th
             fi
         done
     done
+    # The paired pages, scored steps too (pages/NAME_paired).
+    for pfm in "$h"/tests/reference/solution/*.pfm; do
+        [ -f "$pfm" ] && n_lab=$((n_lab + 1))
+    done
     why=
     diff -r "$root/.devcontainer" "$h/.devcontainer" >/dev/null || why="$why the handout's .devcontainer is not the project's;"
     r=$(json_check "$h/.github/classroom/autograding.json" "

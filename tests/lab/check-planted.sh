@@ -210,13 +210,13 @@ grade_exact() {
 
 # paired_check NAME RENDER SCENE EXPECT: make grade's paired page
 # (grade-pages.sh): RENDER with the seed and samples of the solution's
-# render that make-lab.sh ships (lablib.sh's PAIRED_SPP, PAIRED_SEED),
+# render that make-lab.sh ships (lablib.sh's paired_options, PAIRED_SEED),
 # against the correct stage 07's render (the solution), judged by paired;
 # EXPECT "consistent" or "biased".  The solution's render is made with two
 # threads, the student's with one: the same image, bit for bit (the
 # stages' determinism), so correct work is paired and never off.
 paired_check() {
-    pc_opts="-q -W 256 -H 256 --spp $PAIRED_SPP --seed $PAIRED_SEED"
+    pc_opts="-q -W 256 -H 256 $(paired_options 07 "$3") --seed $PAIRED_SEED"
     # shellcheck disable=SC2086 # the options are words
     if "$build/07_pathtrace/render" $pc_opts -t 2 -o "$work/$1.solution.pfm" "$root/scenes/$3.scene" >>"$work/log" 2>&1 &&
         "$2" $pc_opts -t 1 -o "$work/$1.student.pfm" "$root/scenes/$3.scene" >>"$work/log" 2>&1; then

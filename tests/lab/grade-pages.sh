@@ -1,7 +1,8 @@
 #!/bin/sh
 # grade-pages.sh - a compare report page for each reference render of a lab.
 #
-#   grade-pages.sh [--help] [--spp N|auto|paired] [--max-spp N] [--records FILE] HANDOUT STAGE OUT
+#   grade-pages.sh [--help] [--spp N|auto|paired] [--max-spp N] [--records FILE]
+#                  [--paired-only NAME] HANDOUT STAGE OUT
 #
 # HANDOUT is a built lab handout (grade.sh's copy), STAGE its stage
 # (05_bvh).  For every Mitsuba reference the stage's tests compare with
@@ -12,15 +13,17 @@
 # pages").  Prints for each page its verdict, what its tests can find
 # (compare's power line, pages with block tests), its regions and its
 # path.
-# Paired pages (labs 06-08, scored): the student's render with the seed
-# and samples of the solution's render that the handout carries
-# (tests/reference/solution/, make-lab.sh), compared with it pixel by
-# pixel (build/tools/paired: per 16x16 block, the difference against a 1%
-# minimum effect); where the student's code draws its random numbers as
-# the solution's does, the two share their paths and a bias shows at 16
-# spp; where not, the comparison is as of two independent renders, and
-# says "unpaired".  --records FILE: one line a paired page, "NAME ok" or
-# "NAME FAIL MESSAGE" (grade.sh scores them).
+# Paired pages (every lab, scored; lablib.sh's paired_scenes): the
+# student's render with the options and seed of the solution's render that
+# the handout carries (tests/reference/solution/, make-lab.sh), compared
+# with it pixel by pixel (build/tools/paired: per 16x16 block, the
+# difference against a 1% minimum effect); where the student's code draws
+# its random numbers as the solution's does, the two share their paths and
+# a bias shows at once (labs 01-02 are deterministic: any difference over
+# 1% of a block); where not, the comparison is as of two independent
+# renders, and says "unpaired".  --records FILE: one line a paired page, "NAME ok" or
+# "NAME FAIL MESSAGE" (grade.sh scores them).  --paired-only NAME: only
+# the paired page NAME (check-one.sh, make check TEST=pages/NAME_paired).
 # By default (no --spp) the Mitsuba pages of labs 06-08 render 16 spp, a
 # look at the image and its error map, not a verdict to score.
 # --spp auto (make grade SPP=auto): for each noise-tested
@@ -43,7 +46,7 @@
 #                 block tests
 # The pages with block tests share the family level 0.01 (lablib.sh's
 # page_alpha): one run of make grade on correct work says "biased" on any
-# page with probability at most 0.01, as make calibrate measures
+# page with probability at most 0.01, as make calibrate-compare measures
 # (docs/calibration/README.md).
 # Each page's verdict is followed by its error region by region (compare
 # --regions with the reference scene's feature mask, tests/reference/
@@ -61,7 +64,8 @@ LAB_DIR=$(cd "$(dirname "$0")" && pwd)
 spp=paired
 max_spp=$GRADE_MAX_SPP
 records=
-parse_options '--spp spp=VALUE --max-spp max_spp=VALUE --records records=VALUE' "$@"
+only=
+parse_options '--spp spp=VALUE --max-spp max_spp=VALUE --records records=VALUE --paired-only only=VALUE' "$@"
 shift "$po_used"
 [ "$spp" = paired ] || check_spp "$spp" auto
 check_spp "$max_spp"
@@ -114,6 +118,8 @@ renders() {
         rd_inputs="$rd_inputs $work/$1.$rd_i.pfm"
         rd_i=$((rd_i + 1))
     done
+    # What the first render was made with, for paired_page to reuse it.
+    echo "$5 --seed $4" >"$work/$1.options"
 }
 
 # page_spp NAME SCENE: the samples per pixel of the renders of noise-tested
@@ -169,12 +175,14 @@ page() {
     fi
 }
 
-# paired_page NAME SCENE: the student's render of SCENE with the seed and
-# samples of the solution's render in the handout (tests/reference/
-# solution/, make-lab.sh), judged by build/tools/paired against it: the
-# pixel-by-pixel differences, per 16x16 block, against a 1% minimum effect.
-# Scored: its verdict goes to the records (--records: "NAME ok|FAIL
-# MESSAGE").  Without the solution's render, says so and judges nothing.
+# paired_page NAME SCENE: the student's render of SCENE with the options
+# and seed of the solution's render in the handout (lablib.sh's
+# paired_options; tests/reference/solution/, make-lab.sh), judged by
+# build/tools/paired against it: the pixel-by-pixel differences, per 16x16
+# block, against a 1% minimum effect.  A look page's first render serves
+# when it was made so.  Scored: its verdict goes to the records (--records:
+# "NAME ok|FAIL MESSAGE").  Without the solution's render, says so and
+# judges nothing.
 paired_page() {
     pp_solution=$refs/solution/$2.pfm
     if [ ! -f "$pp_solution" ]; then
@@ -182,12 +190,13 @@ paired_page() {
         return 0
     fi
     pp_status=0
+    pp_options="$(paired_options "$nn" "$2") --seed $PAIRED_SEED"
     pp_student=$work/$1.paired.pfm
-    # By default the look's first render has the seed and samples already.
-    if [ "$spp" = paired ] && [ "$PAIRED_SEED" -eq 1 ] && [ -f "$work/$1.1.pfm" ]; then
+    if [ -f "$work/$1.1.pfm" ] && [ "$(cat "$work/$1.options")" = "$pp_options" ]; then
         pp_student=$work/$1.1.pfm
     fi
-    if [ ! -f "$pp_student" ] && ! "$render" -q -W 256 -H 256 --spp "$PAIRED_SPP" --seed "$PAIRED_SEED" \
+    # shellcheck disable=SC2086 # the options are words
+    if [ ! -f "$pp_student" ] && ! "$render" -q -W 256 -H 256 $pp_options \
         -o "$pp_student" "$dir/scenes/$2.scene" >"$work/render.log" 2>&1; then
         echo "    $1, paired: the render failed:"
         sed -n '1,5s/^/        /p' "$work/render.log"
@@ -195,7 +204,7 @@ paired_page() {
         echo "the render failed: $(head -n 1 "$work/render.log")" >"$work/paired.out"
     else
         "$dir/build/tools/paired" "$pp_student" "$pp_solution" >"$work/paired.out" 2>&1 || pp_status=$?
-        echo "    $1, paired with the solution's render ($PAIRED_SPP spp, seed $PAIRED_SEED): $(tail -n 1 "$work/paired.out" | sed 's/^paired: //')"
+        echo "    $1, paired with the solution's render ($pp_options): $(tail -n 1 "$work/paired.out" | sed 's/^paired: //')"
         sed '$d' "$work/paired.out" | sed -n '1,3s/^  /        /p'
     fi
     [ "$pp_status" -le 1 ] || failed=1
@@ -222,8 +231,17 @@ noise_pages() {
     echo "    any of its $1 page(s) in at most 1 grade in 100 by design; measured: $np_doc)"
 }
 
+# --paired-only NAME: that paired page alone (make check TEST=pages/NAME_paired).
+if [ -n "$only" ]; then
+    for scene in $(paired_scenes "$nn"); do
+        [ "$(paired_page_name "$nn" "$scene")" != "$only" ] || { paired_page "$only" "$scene"; exit "$failed"; }
+    done
+    die "lab $nn has no paired page $only (its pages: $(for s in $(paired_scenes "$nn"); do paired_page_name "$nn" "$s"; done | tr '\n' ' '))"
+fi
+
+# The look pages, against Mitsuba's references.
 case $nn in
-    01) echo "    none: stage 01 has no shadows, and every reference has them" ;;
+    01) echo "    none against a reference: stage 01 has no shadows, and every reference has them" ;;
     02 | 03 | 04 | 05)
         page cornell_diffuse_point_direct cornell_diffuse_point 1 "" --mask smooth --max-relmse 1e-5
         ;;
@@ -236,14 +254,16 @@ case $nn in
         noise_pages 1
         page_spp cornell_diffuse_point_direct cornell_diffuse_point &&
             page cornell_diffuse_point_direct cornell_diffuse_point 2 "--spp $pg_spp" --alpha "$alpha"
-        paired_page cornell_diffuse_point_direct cornell_diffuse_point
         ;;
     07 | 08)
         noise_pages 3
         for scene in $(paired_scenes "$nn"); do
             page_spp "${scene}_gi" "$scene" && page "${scene}_gi" "$scene" 2 "--spp $pg_spp" --alpha "$alpha"
-            paired_page "${scene}_gi" "$scene"
         done
         ;;
 esac
+# The paired pages, against the solution's renders: scored.
+for scene in $(paired_scenes "$nn"); do
+    paired_page "$(paired_page_name "$nn" "$scene")" "$scene"
+done
 exit "$failed"

@@ -242,6 +242,30 @@ run_handout_test() {
     }'
 }
 
+# wilson K N - "P LO HI": the rate K/N and its Wilson 95% interval (Wilson,
+# JASA 22, 1927), as fractions.
+wilson() {
+    awk -v k="$1" -v n="$2" 'BEGIN {
+        z = 1.959964; p = k / n
+        c = (p + z * z / (2 * n)) / (1 + z * z / n)
+        h = z / (1 + z * z / n) * sqrt(p * (1 - p) / n + z * z / (4 * n * n))
+        lo = c - h; hi = c + h; if (lo < 0 || k == 0) lo = 0; if (hi > 1 || k == n) hi = 1
+        printf "%.6f %.6f %.6f\n", p, lo, hi }'
+}
+
+# plant_rect SET SIZE: "X,Y,32,32", the square where calibration set SET
+# plants a bias into a SIZE x SIZE image: point SET + 1 of Roberts' R2
+# sequence (additive recurrence with the plastic number, 2018), so that any
+# number of sets spreads its squares evenly over the image.  (awk's rand()
+# right after srand(seed) is nearly linear in the seed in mawk: seeding per
+# set put the first sets' squares in one band.)
+plant_rect() {
+    awk -v i="$1" -v n="$2" 'BEGIN { w = (n < 32 ? n : 32)
+        u = 0.5 + 0.7548776662466927 * (i + 1); v = 0.5 + 0.5698402909980532 * (i + 1)
+        u -= int(u); v -= int(v)
+        printf "%d,%d,%d,%d", int(u * (n - w + 1)), int(v * (n - w + 1)), w, w }'
+}
+
 # The second seed of a grade.  A statistical test (its program takes its
 # seeds from PATHCHECK_SEED: tests/lib/pathcheck.h) that fails is run again
 # on its own at this seed, and fails the grade only when it fails again.
@@ -368,14 +392,39 @@ handout_differences() {
 # Samples per pixel of each of the two renders of a noise-tested report
 # page of make grade (grade-pages.sh --spp, make grade SPP=N): what the
 # pages' power to find a bias rests on (docs/calibration/README.md).
-# The paired pages (grade-pages.sh, the default): the scenes each lab's
-# pages render, the samples per pixel and seed of the solution's renders
-# that make-lab.sh ships in a handout (tests/reference/solution/), which
-# the student's renders repeat.
+# The paired pages (grade-pages.sh), one a scene of paired_scenes NN: the
+# student's render of the scene against the solution's render that
+# make-lab.sh ships in the handout (tests/reference/solution/SCENE.pfm),
+# both with paired_options NN SCENE, -W 256 -H 256 and --seed PAIRED_SEED.
+# Every lab but 05 has them: scenes whose pictures the lab's functions make
+# (an untouched handout's are wrong: check-labs grades it 0%), rendered as
+# the lab's look pages render them, so that those renders serve both.  Lab
+# 05's stub traversal is brute force, whose pictures are the solution's
+# (a tree must not change the picture): a page would pass without the
+# student's work, so its bugs are the function tests' (bvh_intersect
+# against brute force on the same rays).
 paired_scenes() {
     case $1 in
-        06) echo cornell_diffuse_point ;;
+        01 | 02 | 06) echo cornell_diffuse_point ;;
+        03) echo cornell_diffuse_area ;;
+        04) echo cornell_specular_area ;;
         07 | 08) echo cornell_diffuse_point cornell_diffuse_area cornell_specular_area ;;
+    esac
+}
+# paired_options NN SCENE - the options of lab NN's paired renders of SCENE.
+paired_options() {
+    case $1 in
+        01 | 02) echo "" ;;
+        03 | 04 | 05) case $2 in cornell_diffuse_point) echo "" ;; *) echo "--shadow-samples 64" ;; esac ;;
+        *) echo "--spp $PAIRED_SPP" ;;
+    esac
+}
+# paired_page_name NN SCENE - the name of lab NN's paired page of SCENE.
+paired_page_name() {
+    case $1 in
+        01) echo "${2}_unshadowed" ;;
+        02 | 03 | 04 | 05 | 06) echo "${2}_direct" ;;
+        *) echo "${2}_gi" ;;
     esac
 }
 PAIRED_SPP=16

@@ -124,33 +124,37 @@ write_tests() {
     done
     # The grading scripts, for the handout's own make grade.
     mkdir -p "$tmp/tests/lab"
-    for wt_f in grade.sh grade.awk grade-pages.sh lablib.sh; do
+    for wt_f in grade.sh grade.awk grade-pages.sh lablib.sh check-one.sh; do
         cp "$LAB_DIR/$wt_f" "$tmp/tests/lab/$wt_f"
     done
 }
 
 # The solution's renders of the paired pages' scenes (lablib.sh's
-# paired_scenes: labs 06-08), with the project's own build of the stage,
-# into tests/reference/solution/: make grade renders the student's stage
-# with the same seeds and compares the two pixel by pixel (grade-pages.sh).
-# Images only: the handout never holds the solution's code.  Without a
-# build of the stage, none (the pages then compare independent renders).
+# paired_scenes and paired_options: every lab), with the project's own
+# build of the stage, into tests/reference/solution/: make grade renders
+# the student's stage the same way and compares the two pixel by pixel
+# (grade-pages.sh).  Images only: the handout never holds the solution's
+# code.  Without a build of the stage, none (the paired pages then say
+# that they judge nothing).
 write_solution_renders() {
     ws_render=$root/build/$stage/render
     ws_scenes=$(paired_scenes "$nn")
     [ -n "$ws_scenes" ] && [ -x "$ws_render" ] || return 0
     mkdir -p "$tmp/tests/reference/solution"
+    echo "The solution of $stage rendered by make-lab.sh (tests/lab/make-lab.sh), one image a scene:" \
+        >"$tmp/tests/reference/solution/README"
     for ws_scene in $ws_scenes; do
-        "$ws_render" -q -W 256 -H 256 --spp "$PAIRED_SPP" --seed "$PAIRED_SEED" \
+        ws_options="$(paired_options "$nn" "$ws_scene") --seed $PAIRED_SEED"
+        # shellcheck disable=SC2086 # the options are words
+        "$ws_render" -q -W 256 -H 256 $ws_options \
             -o "$tmp/tests/reference/solution/$ws_scene.pfm" "$root/scenes/$ws_scene.scene" >/dev/null 2>&1 ||
             die "the solution's render of $ws_scene failed"
+        echo "    render -W 256 -H 256 $ws_options scenes/$ws_scene.scene" >>"$tmp/tests/reference/solution/README"
     done
     {
-        echo "The solution of $stage rendered by make-lab.sh (tests/lab/make-lab.sh):"
-        echo "render -W 256 -H 256 --spp $PAIRED_SPP --seed $PAIRED_SEED scenes/NAME.scene, one image a scene."
         echo "make grade renders your stage the same way and compares the two pixel by pixel"
         echo "(LAB.md, \"Reading the report pages\")."
-    } >"$tmp/tests/reference/solution/README"
+    } >>"$tmp/tests/reference/solution/README"
 }
 
 write_makefile() {

@@ -406,6 +406,7 @@ stages/02_b/Makefile
 stages/02_b/main.c
 tests/Makefile
 tests/harness/select-tests.sh
+tests/lab/check-one.sh
 tests/lab/grade-pages.sh
 tests/lab/grade.awk
 tests/lab/grade.sh
@@ -947,13 +948,13 @@ EOF2
     fi
 }
 
-# make calibrate's planted code bugs (sed expressions on stage 07's
+# make calibrate-compare's planted code bugs (sed expressions on stage 07's
 # sources) still change what they name: stage 07 moved on once under them.
 test_calibrate_plants() {
     check calibrate/plants-apply sh "$LAB_DIR/../calibrate/calibrate.sh" --check-plants
 }
 
-# make calibrate's grade-auto ledger (tiny renders): a second run with more
+# make calibrate-compare's grade-auto ledger (tiny renders): a second run with more
 # --sets measures only the set the ledger lacks and counts both; a line of
 # another key (measured before the code changed) is not counted.
 test_calibrate_ledger() {

@@ -134,7 +134,7 @@ compare_bias_hint_applies(const struct comparison *c)
     return false;
 }
 
-/* Measured by make calibrate (docs/calibration/README.md) with the
+/* Measured by make calibrate-compare (docs/calibration/README.md) with the
  * statistics of metrics.c and regions.c as they are: update with them. */
 static const char measured_alarms[] =
     "no false alarm in 200 pairs on any reference scene at 64x64; at 256x256, 1 in 400 on the "
@@ -153,7 +153,7 @@ compare_format_alarms(char *buf, size_t cap, const struct comparison *c)
         buf,
         cap,
         "a correct render is called biased here with probability at most %g (--alpha, shared by "
-        "all %d tests); make calibrate measured, for two renders of 64 spp: %s "
+        "all %d tests); make calibrate-compare measured, for two renders of 64 spp: %s "
         "(docs/calibration/README.md). A \"biased\" you doubt: render again with 4 times the spp, "
         "or add renders with other --seed values; a bias keeps its size, a false alarm does not "
         "come back",

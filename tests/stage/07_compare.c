@@ -26,7 +26,7 @@
  * All renders are SIZE x SIZE with fixed seeds, offset by PATHCHECK_SEED
  * when it is set (pathcheck.h): the outcome is the same on every run, and
  * the statistical level says how rarely a correct renderer fails it at
- * another seed (alpha = 0.01 per comparison; make calibrate runs it at 50
+ * another seed (alpha = 0.01 per comparison; make calibrate-compare runs it at 50
  * offsets: docs/calibration/README.md).
  */
 #include <math.h>

@@ -27,8 +27,8 @@
  *    quadrature over u).
  *
  * The two chi-square tests share alpha 0.01 (Sidak: 0.005 each); their
- * seeds are pathcheck_seed()'s, so make calibrate can rerun them with
- * others.  White-box: the test includes the stage's render.c for its static
+ * seeds are pathcheck_seed()'s, so make calibrate and make
+ * calibrate-functions can rerun them with others.  White-box: the test includes the stage's render.c for its static
  * emitted() and russian_roulette() (tests/Makefile links the stage's other
  * objects from an archive).
  */

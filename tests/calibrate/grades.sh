@@ -1,0 +1,225 @@
+#!/bin/sh
+# grades.sh - every verdict of every lab's default grade (make grade, as
+# grade.sh scores it), measured: how often it fails correct work, how often
+# its paired pages find a 2% bias, what that costs (make calibrate).
+#
+#   grades.sh [--sets N] [--labs LIST] [--quick] [--write] [--help]
+#
+# A set is one correct submission that draws its random numbers otherwise
+# than the solution (the case where the grade's statistics matter: a
+# submission that draws them as the solution does repeats its renders and
+# its tests' outcomes).  For set k of lab NN, on the project's stage NN:
+#   tests   every statistical program of the lab's default grade (the
+#           programs selected for stage NN whose seeds come from
+#           PATHCHECK_SEED; FULL=1-only programs are not run by default) at
+#           the seed 1000000 + 10000 k; each TEST() that fails runs again
+#           at a second seed of its own, 5000000 + 10000 k (the grade's
+#           rule, lablib.sh's GRADE_SECOND_SEED: a test fails the grade
+#           when it fails at both); the deterministic programs pass on the
+#           solution every run (make test), so they are not rerun here
+#   pages   each paired page (lablib.sh's paired_scenes): the stage's render
+#           with the page's options at seed 1000 + k, judged by paired
+#           against the solution's render (seed 1) as make grade judges the
+#           student's; "biased" is a false alarm (labs 01-02 have no random
+#           numbers: the same image at every seed)
+#   square  the solution's own render with a 2% brighter 32x32 square at
+#           point k + 1 of Roberts' R2 sequence (lablib.sh's plant_rect):
+#           what a paired student's bias there looks like; found when
+#           paired says "biased"
+# A set's grade is a false alarm when a test or a page fails.  Prints one
+# Markdown row a lab: sets, false alarms (tests, pages, the grade) with the
+# grade's rate and Wilson 95% interval, the 2% square found, and the
+# processor seconds.  The bug catalogue (tests/lab/bugs/: each bug fails a
+# test named for its function, so scores below 100%) is make test's part
+# `functions` (check-functions.sh), run last here with its count.
+# --sets N (default 100), --labs "03 07" (default: every lab), --quick:
+# 6 sets and no bug catalogue, and a check: exit 1 when a set's grade
+# fails correct work or a square is missed (the seeds are fixed, so the
+# outcome is the code's, the same every run; CI: about 200 processor
+# seconds), --write: the table between the markers of
+# docs/calibration/README.md.
+# Cost: about 34 processor seconds a set over the eight labs.
+# Exit status: 0 measured, 1 a render, tool or program failed (or --quick's
+# check), 2 usage.
+set -eu
+
+PROG=grades.sh
+LAB_DIR=$(cd "$(dirname "$0")/../lab" && pwd)
+. "$LAB_DIR/lablib.sh"
+root=$(cd "$LAB_DIR/../.." && pwd)
+
+sets=100
+labs=
+quick=0
+write=0
+parse_options '--sets sets=VALUE --labs labs=VALUE --quick quick=1 --write write=1' "$@"
+shift "$po_used"
+[ $# -eq 0 ] || usage_error "unexpected argument: $1"
+[ "$quick" -eq 0 ] || sets=6
+case $sets in '' | 0 | *[!0-9]*) usage_error "--sets must be a positive whole number, got '$sets'" ;; esac
+[ -n "$labs" ] || labs=$(stage_list "$root" | cut -c1-2 | tr '\n' ' ')
+
+work=$(mktemp -d "${TMPDIR:-/tmp}/grades.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+trap 'exit 1' HUP INT PIPE TERM
+tools=$root/build/tools
+
+# run_tests STAGE K OUT - the statistical programs of the lab's grade at
+# set K's seeds; "1" into OUT when a TEST() fails at both, else "0".
+run_tests() {
+    rt_alarm=0
+    for rt_src in $(cat "$work/$1.programs"); do
+        rt_name=$(basename "$rt_src" .c)
+        rt_bin=$root/build/tests/$1/$rt_name
+        (cd "$root/tests" && PATHCHECK_SEED=$((1000000 + 10000 * $2)) RENDER=$root/build/$1/render \
+            STAGE=$1 ROOT=$root "$rt_bin" || :) >"$work/$1.log" 2>&1 </dev/null
+        grep -Eq '^[0-9]+ passed, [0-9]+ failed' "$work/$1.log" || die "$rt_name crashed on $1 at set $2"
+        for rt_test in $(test_statuses "$rt_src" "$work/$1.log" - | awk '$2 == "FAIL" { print $1 }'); do
+            (cd "$root/tests" && PATHCHECK_SEED=$((5000000 + 10000 * $2)) RENDER=$root/build/$1/render \
+                STAGE=$1 ROOT=$root "$rt_bin" "$rt_test" || :) >"$work/$1.second.log" 2>&1 </dev/null
+            if ! one_test_passed "$work/$1.second.log" "$rt_test"; then
+                rt_alarm=1
+                echo "$1 set $2: $rt_name/$rt_test failed at both seeds" >&2
+            fi
+        done
+    done
+    echo "$rt_alarm" >"$3"
+}
+
+# run_pages NN STAGE K OUT SQUARES - each paired page at set K's seed
+# ("1" into OUT when one says biased) and with the planted 2% square ("1"
+# a line into SQUARES when found, "0" when not).
+run_pages() {
+    rp_alarm=0
+    for rp_scene in $(paired_scenes "$1"); do
+        rp_options=$(paired_options "$1" "$rp_scene")
+        rp_solution=$work/$2.$rp_scene.solution.pfm
+        # shellcheck disable=SC2086 # the options are words
+        "$root/build/$2/render" -q -t 1 -W 256 -H 256 $rp_options --seed $((1000 + $3)) \
+            -o "$work/$2.student.pfm" "$root/scenes/$rp_scene.scene" >"$work/$2.render.log" 2>&1 ||
+            die "$2 did not render $rp_scene: $(head -n 3 "$work/$2.render.log")"
+        rp_status=0
+        "$tools/paired" "$work/$2.student.pfm" "$rp_solution" >"$work/$2.paired" 2>&1 || rp_status=$?
+        [ "$rp_status" -le 1 ] || die "paired failed: $(cat "$work/$2.paired")"
+        if [ "$rp_status" -eq 1 ]; then
+            rp_alarm=1
+            echo "$2 set $3: the page of $rp_scene called correct work biased" >&2
+        fi
+        "$tools/imgedit" --scale 1.02 --rect "$(plant_rect "$3" 256)" "$rp_solution" "$work/$2.square.pfm" >/dev/null ||
+            die "imgedit failed"
+        rp_status=0
+        "$tools/paired" "$work/$2.square.pfm" "$rp_solution" >"$work/$2.paired" 2>&1 || rp_status=$?
+        [ "$rp_status" -le 1 ] || die "paired failed: $(cat "$work/$2.paired")"
+        echo "$rp_status" >>"$5"
+    done
+    echo "$rp_alarm" >"$4"
+}
+
+# measure_lab NN - the sets of lab NN; its row into $work/NN.row.
+measure_lab() {
+    ml_stage=$(resolve_stage "$root" "$1") || exit 2
+    # The programs of the lab's default grade that take seeds.
+    for ml_src in $("$root/tests/harness/select-tests.sh" "$1" "$root"/tests/stage/*.c); do
+        is_statistical "$ml_src" && ! full_only "$ml_src" && echo "$ml_src"
+    done >"$work/$ml_stage.programs" || :
+    for ml_src in $(cat "$work/$ml_stage.programs"); do
+        plain_make -C "$root/tests" STAGE="$ml_stage" "$root/build/tests/$ml_stage/$(basename "$ml_src" .c)" \
+            >/dev/null 2>&1 || die "$(basename "$ml_src" .c) does not build for $ml_stage"
+    done
+    for ml_scene in $(paired_scenes "$1"); do
+        # shellcheck disable=SC2086
+        "$root/build/$ml_stage/render" -q -t 1 -W 256 -H 256 $(paired_options "$1" "$ml_scene") --seed "$PAIRED_SEED" \
+            -o "$work/$ml_stage.$ml_scene.solution.pfm" "$root/scenes/$ml_scene.scene" >/dev/null 2>&1 ||
+            die "$ml_stage did not render $ml_scene"
+    done
+    : >"$work/$1.squares"
+    ml_tests=0
+    ml_pages=0
+    ml_grade=0
+    ml_k=1
+    while [ "$ml_k" -le "$sets" ]; do
+        run_tests "$ml_stage" "$ml_k" "$work/$1.t"
+        run_pages "$1" "$ml_stage" "$ml_k" "$work/$1.p" "$work/$1.squares"
+        ml_t=$(cat "$work/$1.t")
+        ml_p=$(cat "$work/$1.p")
+        ml_tests=$((ml_tests + ml_t))
+        ml_pages=$((ml_pages + ml_p))
+        [ "$ml_t$ml_p" = 00 ] || ml_grade=$((ml_grade + 1))
+        ml_k=$((ml_k + 1))
+    done
+    ml_n=$(wc -l <"$work/$ml_stage.programs" | tr -d ' ')
+    ml_sq_n=$(wc -l <"$work/$1.squares" | tr -d ' ')
+    ml_sq_k=$(grep -c '^1$' "$work/$1.squares" || :)
+    set -- "$ml_stage" $(wilson "$ml_grade" "$sets")
+    if [ "$ml_sq_n" -gt 0 ]; then
+        ml_square=$(wilson "$ml_sq_k" "$ml_sq_n" | awk -v k="$ml_sq_k" -v n="$ml_sq_n" \
+            '{ printf "%d of %d (%.1f%%, Wilson 95%% from %.1f%%)", k, n, 100 * $1, 100 * $2 }')
+    else
+        ml_square="no paired page"
+    fi
+    awk -v stage="$1" -v n="$sets" -v progs="$ml_n" -v t="$ml_tests" -v p="$ml_pages" -v g="$ml_grade" \
+        -v rate="$2" -v lo="$3" -v hi="$4" -v square="$ml_square" 'BEGIN {
+        printf "| %s | %d | %d | %d | %d | %d (%.1f%%, %.1f%%-%.1f%%) | %s |",
+            stage, progs, n, t, p, g, 100 * rate, 100 * lo, 100 * hi, square }' >"$work/$ml_stage.row"
+}
+
+plain_make -C "$root" all >"$work/build.log" 2>&1 || die "the project does not build: $(tail -n 5 "$work/build.log")"
+plain_make -C "$root/tests" tools >"$work/build.log" 2>&1 || die "the tools do not build"
+
+# The labs in two queues, one a processor; each lab's processor seconds
+# from times(1) of its own shell.
+start=$(date +%s)
+queue0=
+queue1=
+i=0
+for nn in $labs; do
+    if [ $((i % 2)) -eq 0 ]; then queue0="$queue0 $nn"; else queue1="$queue1 $nn"; fi
+    i=$((i + 1))
+done
+for q in 0 1; do
+    eval "list=\$queue$q"
+    (
+        for nn in $list; do
+            (
+                measure_lab "$nn"
+                times >"$work/$nn.times"
+            ) 2>>"$work/alarms" || { echo "lab $nn failed" >>"$work/failed"; }
+        done
+    ) &
+done
+wait
+[ ! -f "$work/failed" ] || die "$(cat "$work/failed" "$work/alarms" | tail -n 5)"
+
+{
+    echo "| lab | statistical programs | sets | tests failed at both seeds | paired pages biased | grade's false alarms (rate, Wilson 95%) | a 2% 32x32 square found | processor s |"
+    echo "|---|--:|--:|--:|--:|---|---|--:|"
+    for nn in $labs; do
+        stage=$(resolve_stage "$root" "$nn")
+        secs=$(awk '{ for (i = 1; i <= 2; i++) { split($i, p, "m"); sub(/s$/, "", p[2]); t += 60 * p[1] + p[2] } }
+                    END { printf "%.0f", t }' "$work/$nn.times")
+        echo "$(cat "$work/$stage.row") $secs |"
+    done
+} >"$work/table"
+cat "$work/table"
+[ ! -s "$work/alarms" ] || sed 's/^/    /' "$work/alarms"
+echo "($sets sets a lab, $(($(date +%s) - start)) s on the clock, $(date -u +%Y-%m-%d))"
+
+if [ "$quick" -eq 1 ]; then
+    awk -F'|' 'NR > 2 {
+        split($8, sq, " ")
+        if ($7 !~ /^ 0 / || ($8 !~ /no paired page/ && sq[1] != sq[3])) bad = 1
+    } END { exit bad }' "$work/table" ||
+        die "--quick: correct work failed a set's grade, or a planted square was missed (the table above)"
+else
+    echo "the bug catalogue (check-functions.sh):"
+    "$root/tests/lab/check-functions.sh" | tail -n 1 | sed 's/^/    /'
+fi
+if [ "$write" -eq 1 ]; then
+    readme=$root/docs/calibration/README.md
+    grep -q '^<!-- grades: table -->$' "$readme" || die "no <!-- grades: table --> marker in $readme"
+    awk -v table="$work/table" '
+        /^<!-- grades: table -->$/ { print; while ((getline l < table) > 0) print l; skip = 1; next }
+        /^<!-- grades: end -->$/ { skip = 0 }
+        !skip' "$readme" >"$work/readme" && cp "$work/readme" "$readme"
+    echo "wrote the table into $readme"
+fi
