@@ -349,7 +349,49 @@ TEST(report_page_flip_toggles)
     image_free(&shot);
 }
 
+/* Chromium's Unix sockets live in its TMPDIR, and a socket's path must
+ * stay under 108 bytes: a home deep in a long TMPDIR (a folder under /tmp
+ * of 26 characters was enough, macOS's is longer) closed Chromium's pipe.
+ * chromium.py replaces a long home by a short one; here the home's path is
+ * over 100 characters, and the screenshot is still taken. */
+TEST(a_long_temporary_directory_still_gets_a_screenshot)
+{
+    const char *chromium = browser_path();
+    if (!chromium) {
+        SKIP(BROWSER_MISSING);
+    }
+    const char *page = write_page();
+    char home[512];
+    snprintf(
+        home,
+        sizeof home,
+        "%s",
+        test_tmp_path("a-temporary-directory-as-deep-as-a-course-server-or-macos-makes-it-"
+                      "to-be-long/chromium-home"));
+    CHECK(strlen(home) > 100);
+    const char *const mkdir_argv[] = {"/bin/mkdir", "-p", home, NULL};
+    char log[CAP];
+    CHECK(test_run(mkdir_argv, log, sizeof log) == 0);
+    char chromium_env[4200];
+    snprintf(chromium_env, sizeof chromium_env, "CHROMIUM=%s", chromium);
+    const char *shot = test_tmp_path("long-home.png");
+    const char *const argv[] = {
+        "/usr/bin/env",
+        chromium_env,
+        "python3",
+        test_root_path("tests/lib/chromium.py"),
+        page,
+        "320",
+        "240",
+        shot,
+        home,
+        NULL};
+    int status = test_run(argv, log, sizeof log);
+    CHECK_MSG(status == 0 && test_file_exists(shot), "chromium.py: exit %d\n%s", status, log);
+}
+
 TEST_MAIN(
+    TEST_ENTRY(a_long_temporary_directory_still_gets_a_screenshot),
     TEST_ENTRY(report_page_in_chromium_on_a_desktop),
     TEST_ENTRY(report_page_in_chromium_on_a_phone),
     TEST_ENTRY(report_page_slider_moves_the_edge),

@@ -27,6 +27,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 import urllib.request
 
@@ -45,6 +46,16 @@ class Chromium:
     """Headless Chromium driven over --remote-debugging-pipe."""
 
     def __init__(self, home):
+        # Chromium puts Unix sockets in its TMPDIR, whose paths must stay
+        # under 108 bytes (sun_path): a HOME nested in a test's temporary
+        # directory passes that when TMPDIR is long (a folder under /tmp of
+        # 26 characters did; macOS's is longer).  A home longer than 32
+        # characters is replaced by a short one under /tmp, removed by
+        # close().
+        self.short_home = None
+        if len(home) > 32:
+            self.short_home = tempfile.mkdtemp(prefix='slcr.', dir='/tmp')
+            home = self.short_home
         self.to_browser_r, self.to_browser_w = os.pipe()
         self.from_browser_r, self.from_browser_w = os.pipe()
         env = dict(os.environ, HOME=home, TMPDIR=home)
@@ -60,9 +71,14 @@ class Chromium:
             os.dup2(self.from_browser_w, 4)
 
         # A session of its own: close() stops its helper processes too.
-        self.proc = subprocess.Popen(args, env=env, preexec_fn=pipes, pass_fds=(3, 4),
-                                     stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                                     start_new_session=True)
+        try:
+            self.proc = subprocess.Popen(args, env=env, preexec_fn=pipes, pass_fds=(3, 4),
+                                         stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                         start_new_session=True)
+        except OSError:
+            if self.short_home:
+                shutil.rmtree(self.short_home, ignore_errors=True)
+            raise
         os.close(self.to_browser_r)
         os.close(self.from_browser_w)
         self.buffer = b''
@@ -137,6 +153,8 @@ class Chromium:
             pass
         os.close(self.to_browser_w)
         os.close(self.from_browser_r)
+        if self.short_home:
+            shutil.rmtree(self.short_home, ignore_errors=True)
 
 
 def screenshot(page, width, height, shot, home):
