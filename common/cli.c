@@ -53,7 +53,7 @@ static const struct shared_option shared_options[] = {
     {ID_OUTPUT, 'o', "output", "FILE", ".png (8-bit sRGB), .ppm, .pfm (linear float), .exr"},
     {ID_WIDTH, 'W', "width", "N", "override the scene's image width (height scales unless -H)"},
     {ID_HEIGHT, 'H', "height", "N", "override the scene's image height"},
-    {ID_SPP, 's', "spp", "N", "samples per pixel, for stages that sample"},
+    {ID_SPP, 's', "spp", "N", "samples per pixel (the stage's default: print_help)"},
     {ID_THREADS,
      't',
      "threads",
@@ -330,9 +330,14 @@ apply_shared(
 }
 
 static void
-print_help(FILE *out, const char *stage, const char *summary, const struct option_spec *extra)
+print_help(FILE *out, const struct cli_stage *stage)
 {
-    fprintf(out, "usage: render [options] SCENE\n%s: %s\n\noptions:\n", stage, summary);
+    const struct option_spec *extra = stage->extra;
+    fprintf(
+        out,
+        "usage: render [options] SCENE\n%s: %s\n\noptions:\n",
+        stage->name,
+        stage->summary);
     for (int i = 0; i < N_SHARED; i++) {
         const struct shared_option *o = &shared_options[i];
         char left[64];
@@ -345,7 +350,16 @@ print_help(FILE *out, const char *stage, const char *summary, const struct optio
             o->short_name ? ", " : "  ",
             o->name,
             o->arg ? o->arg : "");
-        fprintf(out, "  %-26s %s\n", left, o->help);
+        if (o->id == ID_SPP && stage->spp_default > 1) {
+            fprintf(out, "  %-26s samples per pixel (default %d)\n", left, stage->spp_default);
+        } else if (o->id == ID_SPP) {
+            fprintf(
+                out,
+                "  %-26s samples per pixel: one, through its centre (more are ignored)\n",
+                left);
+        } else {
+            fprintf(out, "  %-26s %s\n", left, o->help);
+        }
     }
     if (extra[0].name) {
         fprintf(out, "\noptions of this stage:\n");
@@ -488,7 +502,7 @@ cli_parse(
             return CLI_ERROR;
         }
         if (seen == ID_HELP) {
-            print_help(out, stage->name, stage->summary, stage->extra);
+            print_help(out, stage);
             return CLI_EXIT;
         }
         if (seen == ID_VERSION) {

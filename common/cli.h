@@ -63,6 +63,8 @@ struct cli_stage {
     const char *name; /* STAGE_NAME, e.g. "05_bvh" */
     const char *summary; /* one line for --help */
     const struct option_spec *extra; /* the stage's own options, ended by {.name = NULL} */
+    int spp_default; /* --spp's default, for --help; 1: one ray through each pixel's
+                        centre, more ignored */
 };
 
 /* Parse argv.  opt is filled with defaults first.  --help and --version

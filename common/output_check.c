@@ -8,6 +8,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "atomic_file.h"
+
 /* Which file a name is, or would be once written. */
 struct identity {
     dev_t dev;
@@ -37,6 +39,21 @@ directory_of(const char *path, char *dir, size_t cap)
     }
 }
 
+/* Whether the output's temporary file can be created, tried (and removed
+ * at once): access() says yes to root in /proc and /sys, where creating
+ * fails only after the render.  errno says why not. */
+static bool
+can_create(const struct named_file *out)
+{
+    struct atomic_file af;
+    struct diag ignored;
+    if (!atomic_file_open(&af, out->path, &ignored)) {
+        return false;
+    }
+    atomic_file_abort(&af);
+    return true;
+}
+
 static bool
 output_identity(const struct named_file *out, struct identity *id, struct diag *err)
 {
@@ -53,7 +70,7 @@ output_identity(const struct named_file *out, struct identity *id, struct diag *
         diag_set(err, NULL, 0, 0, "%s '%s': directory '%s' %s", out->what, out->path, dir, why);
         return false;
     }
-    if (access(dir, W_OK | X_OK) != 0) {
+    if (access(dir, W_OK | X_OK) != 0 || !can_create(out)) {
         diag_set(
             err,
             NULL,

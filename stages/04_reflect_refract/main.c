@@ -45,7 +45,7 @@ parse_command_line(struct run *run, int argc, char **argv, struct renderer *rend
         },
         {.name = NULL},
     };
-    const struct cli_stage stage = {STAGE_NAME, SUMMARY, stage_options};
+    const struct cli_stage stage = {STAGE_NAME, SUMMARY, stage_options, 1};
     return run_parse(run, argc, argv, &stage);
 }
 

@@ -9,6 +9,7 @@
 #include "run.h"
 
 #define SUMMARY "Whitted ray tracing with a BVH and supersampled pixels (anti-aliasing)"
+#define SPP_DEFAULT 4 /* camera samples per pixel without --spp */
 
 /* The command line: the options every stage shares (cli.h), then this
  * stage's own. */
@@ -68,7 +69,7 @@ parse_command_line(struct run *run, int argc, char **argv, struct renderer *rend
         },
         {.name = NULL},
     };
-    const struct cli_stage stage = {STAGE_NAME, SUMMARY, stage_options};
+    const struct cli_stage stage = {STAGE_NAME, SUMMARY, stage_options, SPP_DEFAULT};
     return run_parse(run, argc, argv, &stage);
 }
 
@@ -77,7 +78,7 @@ parse_command_line(struct run *run, int argc, char **argv, struct renderer *rend
 static bool
 choose_spp(struct renderer *renderer, const struct options *opt, struct diag *err)
 {
-    renderer->spp = opt->spp ? opt->spp : 4;
+    renderer->spp = opt->spp ? opt->spp : SPP_DEFAULT;
     int k = (int)sqrt((double)renderer->spp);
     if (renderer->aa == AA_GRID && k * k != renderer->spp) {
         diag_set(

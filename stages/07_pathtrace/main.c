@@ -9,6 +9,7 @@
 #include "run.h"
 
 #define SUMMARY "Monte Carlo path tracing with next-event estimation and Russian roulette"
+#define SPP_DEFAULT 64 /* camera samples per pixel without --spp */
 
 /* The command line: the options every stage shares (cli.h), then this
  * stage's own. */
@@ -98,7 +99,7 @@ parse_command_line(struct run *run, int argc, char **argv, struct renderer *rend
         },
         {.name = NULL},
     };
-    const struct cli_stage stage = {STAGE_NAME, SUMMARY, stage_options};
+    const struct cli_stage stage = {STAGE_NAME, SUMMARY, stage_options, SPP_DEFAULT};
     return run_parse(run, argc, argv, &stage);
 }
 
@@ -108,7 +109,7 @@ static bool
 choose_spp(struct renderer *renderer, const struct options *opt, struct diag *err)
 {
     int unlimited = 1 << 24;
-    renderer->spp = opt->spp ? opt->spp : renderer->time_limit > 0 ? unlimited : 64;
+    renderer->spp = opt->spp ? opt->spp : renderer->time_limit > 0 ? unlimited : SPP_DEFAULT;
     int k = (int)sqrt((double)renderer->spp);
     if (renderer->aa == AA_GRID && k * k != renderer->spp) {
         diag_set(

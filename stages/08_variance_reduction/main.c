@@ -10,6 +10,7 @@
 #include "run.h"
 
 #define SUMMARY "Path tracing with variance reduction: Sobol points, MIS, a light picker"
+#define SPP_DEFAULT 64 /* camera samples per pixel without --spp */
 
 /* The command line: the options every stage shares (cli.h), then this
  * stage's own. */
@@ -137,7 +138,7 @@ parse_command_line(struct run *run, int argc, char **argv, struct renderer *rend
         },
         {.name = NULL},
     };
-    const struct cli_stage stage = {STAGE_NAME, SUMMARY, stage_options};
+    const struct cli_stage stage = {STAGE_NAME, SUMMARY, stage_options, SPP_DEFAULT};
     return run_parse(run, argc, argv, &stage);
 }
 
@@ -147,7 +148,7 @@ static bool
 choose_spp(struct renderer *renderer, const struct options *opt, struct diag *err)
 {
     int unlimited = 1 << 24;
-    renderer->spp = opt->spp ? opt->spp : renderer->time_limit > 0 ? unlimited : 64;
+    renderer->spp = opt->spp ? opt->spp : renderer->time_limit > 0 ? unlimited : SPP_DEFAULT;
     int k = (int)sqrt((double)renderer->spp);
     if (renderer->aa == AA_GRID && k * k != renderer->spp) {
         diag_set(

@@ -27,7 +27,7 @@ parse(struct knobs *k, struct options *opt, struct diag *err, int argc, const ch
         {.name = "aa", .kind = OPT_CHOICE, .dest = &k->choice, .choices = "grid|jitter|adaptive"},
         {.name = NULL},
     };
-    const struct cli_stage stage = {"99_test", "a test", extra};
+    const struct cli_stage stage = {"99_test", "a test", extra, 16};
     FILE *sink = fopen("/dev/null", "w");
     enum cli_result result = cli_parse(argc, (char **)argv, opt, &stage, sink, err);
     fclose(sink);
@@ -39,7 +39,7 @@ static void
 version_line(char *line, int size)
 {
     const struct option_spec none[] = {{.name = NULL}};
-    const struct cli_stage stage = {"99_test", "a test", none};
+    const struct cli_stage stage = {"99_test", "a test", none, 1};
     const char *argv[] = {"render", "--version"};
     struct options opt;
     struct diag err;

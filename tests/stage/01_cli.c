@@ -159,6 +159,55 @@ TEST(unwritable_output_exits_3)
     CHECK(test_render(small_scene_path(), stats_args, log, sizeof log) == 3);
 }
 
+/* Where creating a file fails although access() allows it (root in /proc
+ * and /sys), the output is refused before the render, not after it: the
+ * pre-check creates the output's temporary file and removes it. */
+TEST(outputs_in_proc_and_sys_are_refused_before_the_render)
+{
+    const char *const dirs[] = {"/proc", "/sys"};
+    for (int i = 0; i < 2; i++) {
+        char out[64];
+        snprintf(out, sizeof out, "%s/stagelight-test.png", dirs[i]);
+        const char *args[] = {"-o", out, NULL};
+        char log[4096];
+        int status = test_render(small_scene_path(), args, log, sizeof log);
+        CHECK_MSG(
+            status == 3 && strstr(log, "cannot create files in directory"),
+            "%s: exit %d: %s",
+            out,
+            status,
+            log);
+    }
+}
+
+/* --help gives the --spp default, and a render without --spp takes it. */
+TEST(help_states_the_spp_default)
+{
+    const char *args[] = {"--help", NULL};
+    static char help[16384];
+    CHECK(test_render(NULL, args, help, sizeof help) == 0);
+    char line[256] = "";
+    const char *at = strstr(help, "--spp N");
+    if (at) {
+        snprintf(line, sizeof line, "%.*s", (int)strcspn(at, "\n"), at);
+    }
+    const char *number = strstr(line, "samples per pixel (default ");
+    double expected = number ? atof(number + strlen("samples per pixel (default ")) : -1;
+    if (strstr(line, "samples per pixel: one, through its centre")) {
+        expected = 1;
+    }
+    CHECK_MSG(expected >= 1, "no default in the --spp line of --help:\n%s", help);
+    const char *stats = test_tmp_path("spp.json");
+    const char *render_args[] = {"-W", "8", "--stats", stats, "-o", test_tmp_path("spp.pfm"), NULL};
+    CHECK(test_render(small_scene_path(), render_args, NULL, 0) == 0);
+    double spp = 0;
+    CHECK_MSG(
+        test_json_number(stats, "spp", &spp) && spp == expected,
+        "spp %g, --help says %g",
+        spp,
+        expected);
+}
+
 /* Every feature a stage lacks is named in one line with the stage that adds
  * it; --strict refuses the scene instead. */
 TEST(unmodelled_features_are_reported_or_refused)
@@ -206,4 +255,6 @@ TEST_MAIN(
     TEST_ENTRY(bad_command_lines_exit_2_and_write_nothing),
     TEST_ENTRY(invalid_scene_exits_1_with_location_and_writes_nothing),
     TEST_ENTRY(unwritable_output_exits_3),
+    TEST_ENTRY(outputs_in_proc_and_sys_are_refused_before_the_render),
+    TEST_ENTRY(help_states_the_spp_default),
     TEST_ENTRY(unmodelled_features_are_reported_or_refused))
