@@ -174,7 +174,9 @@ trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct
         }
         inspect_hit(st, path.depth, r, &h);
         l = vec3_add(l, shade(renderer, &r, &h, &path, rng, st));
-        if (renderer->rr) {
+        /* A path that shade() ended (at an emitter, at the depth limit, with
+         * no bounce) plays no roulette: there is nothing left to stop. */
+        if (renderer->rr && !vec3_is_zero(path.beta)) {
             real u = rng_uniform(rng);
             real q = russian_roulette(&path, renderer->rr_depth, u);
             inspect_roulette(st, q, u, !vec3_is_zero(path.beta));

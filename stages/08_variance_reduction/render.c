@@ -188,7 +188,9 @@ trace(
         }
         inspect_hit(st, path.depth, r, &h);
         l = vec3_add(l, shade(renderer, &r, &h, &path, rng, st));
-        if (renderer->rr) {
+        /* A path that shade() ended (at an emitter, at the depth limit, with
+         * no bounce) plays no roulette: there is nothing left to stop. */
+        if (renderer->rr && !vec3_is_zero(path.beta)) {
             real u;
             sampler_2d(path.id, path.depth, DRAW_ROULETTE, rng, &u, &u);
             real q = russian_roulette(&path, renderer->rr_depth, renderer->rr_threshold, u);
