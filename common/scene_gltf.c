@@ -253,7 +253,10 @@ map_material(const struct gltf_material *g, struct mapping *out)
 }
 
 /* glTF's default material, for primitives without one: white, metallic 1,
- * roughness 1 (glTF 2.0, "Default Material"). */
+ * roughness 1 (glTF 2.0, "Default Material").  A file without materials
+ * asked for none of that: it is shaded as white diffuse, the nearest
+ * surface the stages model (map_surface), with no note to blame a metal on
+ * (docs/blender.md). */
 static const struct gltf_material default_material = {
     .name = "(default)",
     .base_color = {1, 1, 1, 1},
@@ -392,6 +395,9 @@ map_file_materials(
         const struct gltf_material *g = i < n ? &mesh->materials[i] : &default_material;
         struct mapping map;
         map_material(g, &map);
+        if (g == &default_material) {
+            memset(map.why, 0, sizeof map.why);
+        }
         tally(t, g, &map);
         surf[i].emission = map.emission;
         surf[i].two_sided = map.two_sided;

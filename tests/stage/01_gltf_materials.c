@@ -63,7 +63,7 @@ render_to(const char *scene, const char *out, bool strict, char *text)
 
 struct kind_case {
     const char *name;
-    const char *gltf; /* the material in the file */
+    const char *gltf; /* the material in the file; NULL: none */
     const char *scene; /* the same, as a scene material named m */
 };
 
@@ -81,6 +81,9 @@ static const struct kind_case kinds[] = {
      "\"extensions\":{\"KHR_materials_transmission\":{\"transmissionFactor\":1},"
      "\"KHR_materials_ior\":{\"ior\":1.33}}}",
      "material m glass ior 1.33"},
+    /* No material at all: glTF's default (white, metallic 1, roughness 1),
+     * shaded white diffuse without a note, and --strict takes it. */
+    {"unmaterialed", NULL, "material m diffuse albedo 1 1 1"},
 };
 
 TEST(each_kind_renders_as_the_scene_written_by_hand)
@@ -123,6 +126,9 @@ TEST(each_kind_renders_as_the_scene_written_by_hand)
             strict_b,
             text_a);
         CHECK_MSG(!strstr(text_a, "not modelled;") || strict_a != 0, "%s: %s", k->name, text_a);
+        if (!k->gltf) {
+            CHECK_MSG(strict_a == 0 && !strstr(text_a, "warning"), "%s: %s", k->name, text_a);
+        }
         printf("%s: identical images, --strict exit %d\n", k->name, strict_a);
     }
 }
