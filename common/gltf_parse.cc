@@ -121,7 +121,12 @@ struct json_scan {
     bool has_uri;  // the buffer object being read has a "uri"
     size_t without_uri;  // buffer objects without one
     uint64_t values;  // ',', ':', '[' and '{' outside strings: the values, about
+    bool key_is_required;  // the root member being read is "extensionsRequired"
+    bool in_required;  // inside that member's array
+    size_t unsupported_start, unsupported_len;  // its first name no stage reads; len 0: none
 };
+
+static bool extension_supported(const char *name, size_t len);
 
 static bool
 last_string_is(const json_scan *s, const char *word)
@@ -138,6 +143,7 @@ scan_colon(json_scan *s)
         // A name with escapes might spell "buffers": take it as if it did.
         bool escaped = memchr(s->text + s->last_start, '\\', s->last_len) != nullptr;
         s->key_is_buffers = escaped || last_string_is(s, "buffers");
+        s->key_is_required = last_string_is(s, "extensionsRequired");
     } else if (s->depth == 3 && s->in_buffers && last_string_is(s, "uri")) {
         s->has_uri = true;
     }
@@ -149,6 +155,7 @@ scan_open(json_scan *s, unsigned char c)
     s->depth++;
     if (s->depth == 2) {
         s->in_buffers = c == '[' && s->key_is_buffers;
+        s->in_required = c == '[' && s->key_is_required;
     } else if (s->depth == 3 && s->in_buffers) {
         s->has_uri = false;
     }
@@ -179,6 +186,12 @@ scan_json(const unsigned char *text, size_t len, json_scan *out, std::string *wh
             s.last_start = i + 1;
             s.last_len = (end < len ? end : len) - s.last_start;
             i = end;
+            // An element of extensionsRequired (an array holds no names).
+            if (s.in_required && s.depth == 2 && s.unsupported_len == 0
+                && !extension_supported((const char *)text + s.last_start, s.last_len)) {
+                s.unsupported_start = s.last_start;
+                s.unsupported_len = s.last_len;
+            }
         } else if (c == ':') {
             s.values++;
             scan_colon(&s);
@@ -281,6 +294,15 @@ check_before_parsing(
         || !check_json_memory(scan, json_len, max_bytes, why)) {
         return false;
     }
+    // Before tinygltf, whose errors for a compressed or quantized file
+    // speak of accessors (a Draco mesh: "accessor[0] invalid bufferView").
+    if (scan.unsupported_len > 0) {
+        *why = format(
+            "the file requires extension '%.*s', which is not supported",
+            (int)(scan.unsupported_len < 100 ? scan.unsupported_len : 100),
+            (const char *)json + scan.unsupported_start);
+        return false;
+    }
     // The specification lets only the first buffer use the BIN chunk.
     if (binary && scan.without_uri > 1) {
         *why = format(
@@ -349,13 +371,21 @@ parse_model(
 }
 
 // Extensions the renderer reads or can do without: materials and textures
-// (mapped or noted by the scene loader) and punctual lights.
+// (mapped or noted by the scene loader) and punctual lights.  The name is
+// len bytes, raw (an escaped name is never one of these).
+static bool
+extension_supported(const char *name, size_t len)
+{
+    std::string n(name, len);
+    return n.compare(0, 14, "KHR_materials_") == 0 || n.compare(0, 12, "KHR_texture_") == 0
+           || n == "KHR_lights_punctual";
+}
+
 bool
 check_required_extensions(const tinygltf::Model &model, std::string *why)
 {
     for (const std::string &name : model.extensionsRequired) {
-        if (name.compare(0, 14, "KHR_materials_") == 0 || name.compare(0, 12, "KHR_texture_") == 0
-            || name == "KHR_lights_punctual") {
+        if (extension_supported(name.data(), name.size())) {
             continue;
         }
         *why = format("the file requires extension '%.100s', which is not supported", name.c_str());

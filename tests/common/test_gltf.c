@@ -1141,6 +1141,21 @@ TEST(unsupported_features)
     check_refused(tri_glb("sparse.glb", &sparse), "sparse accessors are not supported");
     struct tri_gltf draco = {.top = "\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],"};
     check_refused(tri_glb("draco.glb", &draco), "KHR_draco_mesh_compression");
+    /* As Draco files are: accessors without a bufferView (the mesh is in the
+     * extension's compressed view), which tinygltf refuses first ("accessor[0]
+     * invalid bufferView") unless the required extension is read before it. */
+    struct tri_gltf real_draco = {
+        .top = "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],"
+               "\"extensionsRequired\":[\"KHR_materials_unlit\",\"KHR_draco_mesh_compression\"],",
+        .primitive = "\"attributes\":{\"POSITION\":0},\"indices\":1,\"mode\":4,\"extensions\":"
+                     "{\"KHR_draco_mesh_compression\":{\"bufferView\":0,\"attributes\":"
+                     "{\"POSITION\":0}}}",
+        .accessors = "{\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+                     "{\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}",
+    };
+    check_refused(
+        tri_glb("real-draco.glb", &real_draco),
+        "requires extension 'KHR_draco_mesh_compression', which is not supported");
     struct tri_gltf no_position = {.primitive = "\"attributes\":{\"NORMAL\":0},\"indices\":1"};
     check_refused(tri_glb("nopos.glb", &no_position), "POSITION");
     struct tri_gltf normals = {
