@@ -2,13 +2,13 @@
 #include "output_check.h"
 
 #include <errno.h>
+#include <signal.h>
 #include <stdbool.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-#include "atomic_file.h"
 
 /* Which file a name is, or would be once written. */
 struct identity {
@@ -39,19 +39,29 @@ directory_of(const char *path, char *dir, size_t cap)
     }
 }
 
-/* Whether the output's temporary file can be created, tried (and removed
- * at once): access() says yes to root in /proc and /sys, where creating
- * fails only after the render.  errno says why not. */
+/* Whether a file can be created in dir, tried: access() says yes to root
+ * in /proc and /sys, where creating fails only after the render.  The
+ * probe is not named as the outputs' temporaries are (a test takes one of
+ * those for a write begun), and no signal comes between its creation and
+ * its removal: they are held until it is gone.  errno says why not. */
 static bool
-can_create(const struct named_file *out)
+can_create_in(const char *dir)
 {
-    struct atomic_file af;
-    struct diag ignored;
-    if (!atomic_file_open(&af, out->path, &ignored)) {
-        return false;
+    char probe[4200];
+    snprintf(probe, sizeof probe, "%s/.probe-stagelight-XXXXXX", dir);
+    sigset_t all;
+    sigset_t old;
+    sigfillset(&all);
+    sigprocmask(SIG_BLOCK, &all, &old);
+    int fd = mkstemp(probe);
+    int error = errno;
+    if (fd >= 0) {
+        close(fd);
+        unlink(probe);
     }
-    atomic_file_abort(&af);
-    return true;
+    sigprocmask(SIG_SETMASK, &old, NULL);
+    errno = error;
+    return fd >= 0;
 }
 
 static bool
@@ -70,7 +80,7 @@ output_identity(const struct named_file *out, struct identity *id, struct diag *
         diag_set(err, NULL, 0, 0, "%s '%s': directory '%s' %s", out->what, out->path, dir, why);
         return false;
     }
-    if (access(dir, W_OK | X_OK) != 0 || !can_create(out)) {
+    if (access(dir, W_OK | X_OK) != 0 || !can_create_in(dir)) {
         diag_set(
             err,
             NULL,

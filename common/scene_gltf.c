@@ -325,45 +325,80 @@ add_file_material(
     return true;
 }
 
-/* What was dropped, by kind: how many materials and the first of them. */
+/* The material extensions noted one by one: each different list of them
+ * gets its own note (a file of clearcoat and sheen names both). */
+#define DROP_EXTENSION_LISTS 8
+
+/* What was dropped, by kind: how many materials and the first of them; for
+ * the extensions, by each different list of them. */
 struct drop_tally {
     int count[DROP_KINDS];
     const char *first_name[DROP_KINDS];
     char first_why[DROP_KINDS][200];
+    int n_lists;
+    int list_count[DROP_EXTENSION_LISTS];
+    const char *list_name[DROP_EXTENSION_LISTS];
+    char list_why[DROP_EXTENSION_LISTS][200];
 };
+
+static void
+tally_extensions(struct drop_tally *t, const struct gltf_material *g, const char *why)
+{
+    for (int i = 0; i < t->n_lists; i++) {
+        if (strcmp(t->list_why[i], why) == 0) {
+            t->list_count[i]++;
+            return;
+        }
+    }
+    /* Past the last slot, the rest count with it (its note says "more"). */
+    int i = t->n_lists < DROP_EXTENSION_LISTS ? t->n_lists++ : DROP_EXTENSION_LISTS - 1;
+    if (t->list_count[i]++ == 0) {
+        t->list_name[i] = g->name;
+        snprintf(t->list_why[i], sizeof t->list_why[i], "%s", why);
+    }
+}
 
 static void
 tally(struct drop_tally *t, const struct gltf_material *g, const struct mapping *map)
 {
     for (int k = 0; k < DROP_KINDS; k++) {
-        if (map->why[k][0] && t->count[k]++ == 0) {
+        if (k == DROP_EXTENSIONS && map->why[k][0]) {
+            tally_extensions(t, g, map->why[k]);
+        } else if (map->why[k][0] && t->count[k]++ == 0) {
             t->first_name[k] = g->name;
             memcpy(t->first_why[k], map->why[k], sizeof t->first_why[k]);
         }
     }
 }
 
+static void
+note_one(
+    struct parser *p,
+    const struct token *at,
+    const char *file,
+    const char *name,
+    const char *why,
+    int count)
+{
+    char more[48] = "";
+    if (count > 1) {
+        snprintf(more, sizeof more, " (and %d more materials)", count - 1);
+    }
+    scene_add_note(p->scene, loc_of(at), "%s: material '%s': %s%s", file, name, why, more);
+}
+
 /* One note per dropped kind: the first material that dropped it, and how
- * many more did. */
+ * many more did; the extensions, one note per different list of them. */
 static void
 note_dropped(struct parser *p, const struct token *at, const char *file, const struct drop_tally *t)
 {
     for (int k = 0; k < DROP_KINDS; k++) {
-        if (t->count[k] == 0) {
-            continue;
+        if (t->count[k] > 0) {
+            note_one(p, at, file, t->first_name[k], t->first_why[k], t->count[k]);
         }
-        char more[48] = "";
-        if (t->count[k] > 1) {
-            snprintf(more, sizeof more, " (and %d more materials)", t->count[k] - 1);
-        }
-        scene_add_note(
-            p->scene,
-            loc_of(at),
-            "%s: material '%s': %s%s",
-            file,
-            t->first_name[k],
-            t->first_why[k],
-            more);
+    }
+    for (int i = 0; i < t->n_lists; i++) {
+        note_one(p, at, file, t->list_name[i], t->list_why[i], t->list_count[i]);
     }
 }
 

@@ -961,7 +961,11 @@ json_document(struct text *t, const struct glb_plan *plan)
     if (plan->index_bytes) {
         text_printf(t, ",\"indices\":%d", plan->normals ? 2 : 1);
     }
-    text_printf(t, ",\"mode\":4%s}]}],", o->material ? ",\"material\":0" : "");
+    text_printf(t, ",\"mode\":4%s}]}", o->material ? ",\"material\":0" : "");
+    if (o->meshes) {
+        text_printf(t, ",%s", o->meshes);
+    }
+    text_printf(t, "],");
     json_accessors(t, plan);
     text_printf(t, "\"buffers\":[{");
     if (o->bin_uri) {

@@ -144,11 +144,15 @@ struct meshgen_glb_options {
      * object such as {"pbrMetallicRoughness":{"baseColorFactor":[1,0,0,1]}};
      * `nodes` holds n_nodes more node objects, comma-separated, each a root
      * of the scene after the mesh's node (cameras, lights); `members` more
-     * members of the top-level object, e.g. "cameras":[...]. */
+     * members of the top-level object, e.g. "cameras":[...]; `meshes` more
+     * mesh objects after the mesh (mesh 1 on, placed by `nodes`), which
+     * may share its accessors: POSITION 0, NORMAL 1, the indices 2;
+     * `material` may hold several, comma-separated (the mesh's is 0). */
     const char *material;
     const char *nodes;
     int n_nodes;
     const char *members;
+    const char *meshes;
     /* NULL: a .glb.  Else a .gltf: the JSON as text, its buffer in an
      * external file at this URI relative to the .gltf's directory (a
      * relative path, written into the JSON as given), which is written

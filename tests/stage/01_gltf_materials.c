@@ -266,7 +266,40 @@ TEST(each_dropped_kind_warns_and_strict_refuses)
     }
 }
 
+/* Two materials with different extensions (as ToyCar's clearcoat and
+ * sheen): each list is named in its own note, not only the first
+ * material's. */
+TEST(every_material_extension_is_named)
+{
+    REQUIRE_GLTF();
+    static const double centre[3] = {0, 0.2, 0};
+    struct meshgen_mesh m = meshgen_icosphere(1, 0.5, centre);
+    const char *path = test_tmp_path("two_coats.glb");
+    struct meshgen_glb_options opts = {
+        .material = "{\"name\":\"paint\",\"pbrMetallicRoughness\":{\"metallicFactor\":0},"
+                    "\"extensions\":{\"KHR_materials_clearcoat\":{\"clearcoatFactor\":1}}},"
+                    "{\"name\":\"seat\",\"pbrMetallicRoughness\":{\"metallicFactor\":0},"
+                    "\"extensions\":{\"KHR_materials_sheen\":{\"sheenColorFactor\":[1,1,1]}}}",
+        .meshes = "{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},"
+                  "\"indices\":2,\"material\":1}]}",
+        .nodes = "{\"mesh\":1,\"translation\":[1.2,0,0]}",
+        .n_nodes = 1,
+    };
+    bool ok = m.n_triangles > 0 && meshgen_write_glb(&m, path, &opts);
+    meshgen_free(&m);
+    CHECK_MSG(ok, "cannot write %s", path);
+    const char *scene = stagecheck_scene("coats.scene", SCENE_HEAD "mesh file two_coats.glb\n");
+    static char text[OUTPUT_CAP];
+    CHECK_MSG(render_to(scene, test_tmp_path("coats.pfm"), false, text) == 0, "%s", text);
+    CHECK_MSG(
+        strstr(text, "material 'paint': KHR_materials_clearcoat not modelled; ignored")
+            && strstr(text, "material 'seat': KHR_materials_sheen not modelled; ignored"),
+        "both extensions named, each with its material:\n%s",
+        text);
+}
+
 TEST_MAIN(
     TEST_ENTRY(each_kind_renders_as_the_scene_written_by_hand),
+    TEST_ENTRY(every_material_extension_is_named),
     TEST_ENTRY(material_on_the_line_overrides_the_file),
     TEST_ENTRY(each_dropped_kind_warns_and_strict_refuses))
