@@ -94,6 +94,8 @@ struct gltf_light {
     double position[3], direction[3]; /* direction: the node's -z, unit */
 };
 
+#define GLTF_MAX_DROPPED 8
+
 struct gltf_mesh {
     size_t n_vertices;
     double *positions; /* 3 * n_vertices, world space */
@@ -109,6 +111,12 @@ struct gltf_mesh {
     size_t n_cameras;
     struct gltf_light *lights;
     size_t n_lights;
+    /* What of the file no stage models, beside its materials (those are
+     * noted by the scene loader): skins, animations, morph targets,
+     * instancing, other extensions; one line each, "what not modelled;
+     * what is used instead". */
+    char dropped[GLTF_MAX_DROPPED][200];
+    int n_dropped;
     /* The other files the load read (external buffers, and images, read
      * though never decoded), each once, as opened: the model's directory
      * joined to the URI.  They are inputs of a render as the model is. */

@@ -3,8 +3,9 @@
  * This file holds the C API (gltf_free, the same without tinygltf, is in
  * gltf_mesh.c); the loader's steps are in gltf_files.cc (reading
  * files, confined), gltf_parse.cc (GLB and JSON checks, tinygltf),
- * gltf_nodes.cc (transforms), gltf_accessors.cc (checks), gltf_copy.cc and
- * gltf_extras.cc (materials, cameras, lights), which share gltf_shim.h.
+ * gltf_nodes.cc (transforms), gltf_accessors.cc (checks), gltf_copy.cc,
+ * gltf_extras.cc (materials, cameras, lights) and gltf_dropped.cc (what no
+ * stage models), which share gltf_shim.h.
  *
  * tinygltf parses the JSON and gathers the buffers; everything after that is
  * ours: choosing the nodes, checking every accessor against the bytes that
@@ -91,6 +92,7 @@ load(const char *path, uint64_t max_bytes, struct gltf_mesh *out, std::string *w
         && copy_materials(model, out, why) && copy_placed(model, cameras_and_lights, out, why);
     if (ok) {
         copy_file_names(guard.read, out);
+        copy_dropped(model, out);
     }
     return ok;
 }

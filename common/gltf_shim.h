@@ -12,8 +12,8 @@
 
 #include <cstdarg>
 #include <cstddef>
-#include <cstdio>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -73,6 +73,7 @@ struct placed {
 // every step uses it, and a helper in gltf_shim.cc, which calls the steps,
 // would make the files call each other in a circle.
 inline std::string format(const char *fmt, ...) DIAG_PRINTF(1, 2);
+
 inline std::string
 format(const char *fmt, ...)
 {
@@ -161,5 +162,8 @@ bool copy_placed(
     const std::vector<placed> &cameras_and_lights,
     struct gltf_mesh *out,
     std::string *why);
+
+// gltf_dropped.cc
+void copy_dropped(const tinygltf::Model &model, struct gltf_mesh *out);
 
 #endif /* GLTF_SHIM_H */

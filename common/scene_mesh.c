@@ -312,6 +312,18 @@ load_gltf_file(
             return false;
         }
     }
+    /* What of it no stage models (skins, animations, ...), a note each. */
+    const char *slash = strrchr(path, '/');
+    for (int i = 0; i < out->n_dropped; i++) {
+        scene_add_note(
+            p->scene,
+            loc_of(t),
+            "%s: %s",
+            name    ? name
+            : slash ? slash + 1
+                    : path,
+            out->dropped[i]);
+    }
     return true;
 }
 
@@ -329,6 +341,17 @@ build_mesh(struct parser *p, const struct token *kw, struct fields *fs)
     struct gltf_mesh mesh = {.n_vertices = 0};
     if (!mesh_path(p, file, name, path) || !load_gltf_file(p, file, name, path, &mesh)) {
         return false;
+    }
+    if (mesh.n_lights > 0) {
+        /* A scene's lights are its own statements; a file loaded as the
+         * scene (render FILE.glb) is lit by them. */
+        scene_add_note(
+            p->scene,
+            loc_of(file),
+            "%s: %zu KHR_lights_punctual light(s) not placed by a mesh line; ignored (render the "
+            "file as the scene to light it by them)",
+            name,
+            mesh.n_lights);
     }
     bool ok = (own_materials ? append_with_surfaces(p, kw, name, &mesh, &xf)
                              : append_mesh(p, file, &mesh, &xf, material, NULL))

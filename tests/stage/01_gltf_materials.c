@@ -298,8 +298,74 @@ TEST(every_material_extension_is_named)
         text);
 }
 
+struct file_case {
+    const char *name;
+    struct meshgen_glb_options opts;
+    const char *says;
+};
+
+/* What of a file no stage models beside its materials, as files made
+ * elsewhere carry it (BrainStem's skin and animation, SimpleInstancing's
+ * instances, a texture transform, a lamp's light). */
+static const struct file_case file_cases[] = {
+    {"skinned",
+     {.members = "\"skins\":[{\"joints\":[0]}]"},
+     "1 skin(s) not modelled; the skinned meshes as stored, in their bind pose"},
+    {"animated",
+     {.members = "\"animations\":[{\"channels\":[],\"samplers\":[]}]"},
+     "1 animation(s) not modelled; the nodes' own transforms, no frame of an animation"},
+    {"morphed",
+     {.meshes = "{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":1},\"indices\":2,"
+                "\"targets\":[{\"POSITION\":0}]}]}",
+      .nodes = "{\"mesh\":1,\"translation\":[1.2,0,0]}",
+      .n_nodes = 1},
+     "morph targets not modelled; the base meshes, the targets' weights ignored"},
+    {"instanced",
+     {.members = "\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]",
+      .nodes = "{\"mesh\":0,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":"
+               "{\"TRANSLATION\":0}}}}",
+      .n_nodes = 1},
+     "EXT_mesh_gpu_instancing (1 node(s)) not modelled; one instance each"},
+    {"transformed",
+     {.members = "\"extensionsUsed\":[\"KHR_texture_transform\"]"},
+     "extension 'KHR_texture_transform' not modelled; ignored"},
+    {"lamp",
+     {.members =
+          "\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensions\":{\"KHR_lights_punctual\":"
+          "{\"lights\":[{\"type\":\"point\",\"intensity\":1}]}}",
+      .nodes = "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}",
+      .n_nodes = 1},
+     "1 KHR_lights_punctual light(s) not placed by a mesh line; ignored"},
+};
+
+TEST(each_dropped_file_feature_warns_and_strict_refuses)
+{
+    REQUIRE_GLTF();
+    static const double centre[3] = {0, 0.2, 0};
+    for (size_t i = 0; i < sizeof file_cases / sizeof file_cases[0]; i++) {
+        const struct file_case *c = &file_cases[i];
+        struct meshgen_mesh m = meshgen_icosphere(1, 0.5, centre);
+        char file[64];
+        snprintf(file, sizeof file, "%s.glb", c->name);
+        bool ok = m.n_triangles > 0 && meshgen_write_glb(&m, test_tmp_path(file), &c->opts);
+        meshgen_free(&m);
+        CHECK_MSG(ok, "cannot write %s", file);
+        const char *scene = stagecheck_scene("file.scene", SCENE_HEAD "mesh file %s\n", file);
+        const char *out = test_tmp_path("file.pfm");
+        static char text[OUTPUT_CAP];
+        char want[512];
+        remove(out);
+        CHECK_MSG(render_to(scene, out, false, text) == 0, "%s: %s", c->name, text);
+        /* At the file's name (line 6, column 11). */
+        snprintf(want, sizeof want, "file.scene:6:11: warning: %s: %s", file, c->says);
+        CHECK_MSG(strstr(text, want) != NULL, "expected '%s' in:\n%s", want, text);
+        CHECK_MSG(render_to(scene, out, true, text) == 1, "%s: --strict: %s", c->name, text);
+    }
+}
+
 TEST_MAIN(
     TEST_ENTRY(each_kind_renders_as_the_scene_written_by_hand),
+    TEST_ENTRY(each_dropped_file_feature_warns_and_strict_refuses),
     TEST_ENTRY(every_material_extension_is_named),
     TEST_ENTRY(material_on_the_line_overrides_the_file),
     TEST_ENTRY(each_dropped_kind_warns_and_strict_refuses))
