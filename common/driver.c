@@ -105,7 +105,8 @@ pixel_estimate(const struct render_job *job, int x, int y, int pass, struct stat
     return job->pixel(job->ctx, x, y, &rng, st);
 }
 
-static void
+/* Whether the tile was finished (a stop may cut it short). */
+static bool
 render_tile(struct pass_state *ps, int tile, struct stats *st)
 {
     const struct render_job *job = ps->job;
@@ -113,12 +114,20 @@ render_tile(struct pass_state *ps, int tile, struct stats *st)
     int y0 = (tile / ps->tiles_x) * TILE_SIZE;
     int x1 = x0 + TILE_SIZE < job->width ? x0 + TILE_SIZE : job->width;
     int y1 = y0 + TILE_SIZE < job->height ? y0 + TILE_SIZE : job->height;
+    /* A stop is seen after the pixel at hand, not after the tile: a tile of
+     * a heavy scene takes many seconds, and a stop must come within one.
+     * A tile cut short is not counted done, so the pass it belongs to is
+     * never used (run_pass). */
     for (int y = y0; y < y1; y++) {
         for (int x = x0; x < x1; x++) {
+            if (stop_requested) {
+                return false;
+            }
             size_t index = (size_t)y * (size_t)job->width + (size_t)x;
             ps->values[index] = pixel_estimate(job, x, y, ps->pass, st);
         }
     }
+    return true;
 }
 
 static void *
@@ -135,8 +144,8 @@ work(void *arg)
         if (tile >= ps->n_tiles) {
             break;
         }
-        if (tile_is_ours(tile)) {
-            render_tile(ps, tile, &counts);
+        if (tile_is_ours(tile) && !render_tile(ps, tile, &counts)) {
+            break;
         }
         atomic_fetch_add(&ps->tiles_done, 1);
         if (ps->job->progress && pthread_mutex_trylock(&ps->draw_lock) == 0) {
