@@ -213,7 +213,22 @@ page_title() {
 todo_list() {
     (cd "$tmp" && awk -v mode=regions -v stubs="$LAB_DIR/stubs" -f "$LAB_DIR/markers.awk" \
         stages/"$stage"/*.[ch]) |
-        awk -F '\t' -v nn="$nn" '$4 == nn { printf "- `%s`, line %d: %s\n", $1, $2, $5 }'
+        awk -F '\t' -v nn="$nn" '$4 == nn { sub(/ \(docs\/stages\/[^)]*\)$/, "", $5); printf "- `%s`, line %d: %s\n", $1, $2, $5 }'
+}
+
+# ": WHAT", the first sentence of a test source's header comment
+# (" * NAME.c - WHAT. More ..."), its lines joined; empty without one.
+header_summary() {
+    awk 'NR == 1 { next }
+         /^ \*\/|^ \*$|^ \* *-/ && NR > 2 { exit }
+         /^ \* / { sub(/^ \* /, ""); text = text (text == "" ? "" : " ") $0; next }
+         { exit }
+         END {
+             if (sub(/^[^ ]+\.c - /, "", text) == 0) exit
+             if (match(text, /\. |\.$/)) text = substr(text, 1, RSTART - 1)
+             sub(/:$/, "", text)
+             printf ": %s", text
+         }' "$1"
 }
 
 test_list() {
@@ -224,7 +239,13 @@ test_list() {
         tl_from=$(test_from "$tl_f")
         if { [ "$tl_which" = lab ] && [ "$tl_from" = "$nn" ]; } ||
             { [ "$tl_which" = earlier ] && [ "$tl_from" != "$nn" ]; }; then
-            printf -- '- `tests/stage/%s`\n' "$(basename "$tl_f")"
+            # With what its header says it checks, for the lab's own.
+            tl_says=
+            if [ "$tl_which" = lab ]; then
+                tl_says=$(header_summary "$tl_f")
+                ! full_only "$tl_f" || tl_says="$tl_says (run by make grade FULL=1 only)"
+            fi
+            printf -- '- `tests/stage/%s`%s\n' "$(basename "$tl_f")" "$tl_says"
             tl_any=1
         fi
     done
@@ -259,7 +280,8 @@ write_labmd() {
         echo "    make          # builds build/$stage/render"
         echo "    make test     # the tests; the last line is \"N passed, N failed, N skipped\""
         echo
-        echo "The tests of this lab fail until you write it:"
+        echo "The tests of this lab fail until you write it (the table above describes"
+        echo "the main ones; each line below begins with what its header says):"
         echo
         test_list lab
         echo
@@ -271,6 +293,15 @@ write_labmd() {
         sed -e "s/@STAGE@/$stage/g" -e "s/@NN@/$nn/g" "$LAB_DIR/report-pages.md"
     } >"$tmp/LAB.md"
     rm -f "$tmp/.assets" "$tmp/.section"
+    # The project's pages LAB.md names (docs/aov.md, docs/inspect.md), so
+    # that the handout holds what it cites; never a stage's own page (it
+    # would show the lab's solution) nor its diffs.
+    for wl_doc in $(grep -o 'docs/[A-Za-z0-9_-]*\.md' "$tmp/LAB.md" | LC_ALL=C sort -u); do
+        if [ -f "$root/$wl_doc" ] && [ "$wl_doc" != docs/README.md ]; then
+            mkdir -p "$tmp/docs"
+            cp "$root/$wl_doc" "$tmp/$wl_doc"
+        fi
+    done
 }
 
 # The list of a handout's files with their checksums (build/, grade/ - make

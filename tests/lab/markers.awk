@@ -157,8 +157,17 @@ function end_region(s,    t) {
         err(FILENAME, r_open, "empty LAB " r_label " region")
     if (mode == "handout" && r_label == lab) print s
     if (mode == "regions")
-        printf "%s\t%d\t%d\t%s\t%s\n", FILENAME, r_open, FNR, r_label, hint[1]
+        printf "%s\t%d\t%d\t%s\t%s\n", FILENAME, r_open, FNR, r_label, whole_hint()
     st = 0
+}
+
+# The region's hint, its lines joined (LAB.md's list of places quotes it
+# whole: its first line alone can stop mid-sentence).
+function whole_hint(    i, h) {
+    h = ""
+    for (i = 1; i <= n_hint; i++)
+        h = h (i > 1 ? " " : "") hint[i]
+    return h
 }
 
 function body_line(s) {
