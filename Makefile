@@ -129,7 +129,7 @@ bench: all
 # Every verdict of every lab's default grade: how often it fails correct
 # work, how often its paired pages find a 2% bias, the bug catalogue
 # (tests/calibrate/grades.sh; about 1 processor-hour, the table into
-# docs/calibration/README.md).  QUICK=1: 6 sets a lab, a check (CI).
+# docs/calibration/README.md).  QUICK=1: 4 sets a lab, a check (CI).
 calibrate: all
 	@tests/calibrate/grades.sh $(if $(filter 1,$(QUICK)),--quick,--write) $(if $(SETS),--sets $(SETS))
 
