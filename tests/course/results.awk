@@ -39,7 +39,7 @@ BEGIN {
             # compare's verdicts that pass: "consistent ...", "within the limit ...";
             # a paired page's line ends with its verdict
             if (l ~ /, paired with the solution's render /) pfailed[np] = (l !~ /: consistent$/)
-            else pfailed[np] = (l !~ /^    [^ :]*: (consistent|within)/)
+            else pfailed[np] = (l !~ /^    [^ :]*: (consistent|within|not tested)/)
             continue
         }
         if (in_pages && l ~ /^        /) {

@@ -24,8 +24,9 @@
 # renders, and says "unpaired".  --records FILE: one line a paired page, "NAME ok" or
 # "NAME FAIL MESSAGE" (grade.sh scores them).  --paired-only NAME: only
 # the paired page NAME (check-one.sh, make check TEST=pages/NAME_paired).
-# By default (no --spp) the Mitsuba pages of labs 06-08 render 16 spp, a
-# look at the image and its error map, not a verdict to score.
+# By default (no --spp) the Mitsuba pages of labs 06-08 are one render of
+# 16 spp (the paired page's), a look at the image and its error map, not a
+# verdict to score.
 # --spp auto (make grade SPP=auto): for each noise-tested
 # page, as many samples per pixel as its test needs to find a 2% bias in 9
 # of 10 32x32 windows 9 times in 10 (compare's power line on a pilot of two
@@ -220,8 +221,12 @@ paired_page() {
 # noise_pages N: the family level of each of the lab's N block-tested pages.
 noise_pages() {
     alpha=$(page_alpha "$1")
+    if [ "$spp" = paired ]; then
+        echo "    (each page below: one render of $PAIRED_SPP spp, the paired page's, a look at the image and its error:"
+        echo "    one render cannot tell noise from bias; the paired verdict is the one scored)"
+        return 0
+    fi
     np_spp="$spp spp"
-    [ "$spp" = paired ] && np_spp="$PAIRED_SPP spp (a look: the paired verdict is the one scored)"
     np_doc=docs/calibration/README.md
     if [ "$spp" = auto ]; then
         np_spp="the spp its pilot asks for"
@@ -250,15 +255,15 @@ case $nn in
     03 | 04 | 05)
         page cornell_diffuse_area_direct cornell_diffuse_area 1 "--shadow-samples 64" --mask smooth --max-relmse 5e-5
         ;;
-    06)
-        noise_pages 1
-        page_spp cornell_diffuse_point_direct cornell_diffuse_point &&
-            page cornell_diffuse_point_direct cornell_diffuse_point 2 "--spp $pg_spp" --alpha "$alpha"
-        ;;
-    07 | 08)
-        noise_pages 3
+    06 | 07 | 08)
+        # By default (paired) one render a page, the paired page's own: a
+        # look; with SPP=N or auto, two, block-tested.
+        pg_renders=2
+        [ "$spp" != paired ] || pg_renders=1
+        noise_pages "$(paired_scenes "$nn" | wc -w)"
         for scene in $(paired_scenes "$nn"); do
-            page_spp "${scene}_gi" "$scene" && page "${scene}_gi" "$scene" 2 "--spp $pg_spp" --alpha "$alpha"
+            name=$(paired_page_name "$nn" "$scene")
+            page_spp "$name" "$scene" && page "$name" "$scene" "$pg_renders" "--spp $pg_spp" --alpha "$alpha"
         done
         ;;
 esac

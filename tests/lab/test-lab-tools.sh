@@ -611,13 +611,15 @@ test_grade_pages() {
             fail "grade-pages/$gp_stage" "$gp_pages pages, $gp_images images" "$(cat "$T/out")"
         fi
     done
-    # No --spp (make grade's default): the Mitsuba page at 16 spp, a look,
-    # and the paired page, which the project (no solution renders in
+    # No --spp (make grade's default): the Mitsuba page, one render of 16
+    # spp without a verdict (a look, the paired page's render), and the
+    # paired page, which the project (no solution renders in
     # tests/reference/solution/: not a handout) cannot judge, and says so,
     # recording nothing.
     : >"$T/paired-records"
     if "$LAB_DIR/grade-pages.sh" --records "$T/paired-records" "$root" 06_supersample "$T/pages/default" >"$T/out" 2>&1 &&
-        grep -q "two renders of 16 spp (a look: the paired verdict is the one scored)" "$T/out" &&
+        grep -q "(each page below: one render of 16 spp, the paired page's, a look" "$T/out" &&
+        grep -q "^    cornell_diffuse_point_direct: not tested for bias" "$T/out" &&
         grep -q "^    cornell_diffuse_point_direct, paired: the handout has no solution render of cornell_diffuse_point" "$T/out" &&
         [ ! -s "$T/paired-records" ]; then
         ok grade-pages/paired-by-default
