@@ -171,6 +171,20 @@ function drawImage(canvas, rgb, width, height) {
     ctx.putImageData(out, 0, 0);
 }
 
+// An empty panel's canvas: what to do, not a black square (a page that
+// rendered on load would start minutes of work nobody asked for).
+function drawPrompt(canvas, lines) {
+    canvas.width = 512;
+    canvas.height = 256;
+    const ctx = canvas.getContext('2d');
+    ctx.fillStyle = '#222';
+    ctx.fillRect(0, 0, canvas.width, canvas.height);
+    ctx.fillStyle = '#ddd';
+    ctx.font = '20px sans-serif';
+    ctx.textAlign = 'center';
+    lines.forEach((line, i) => ctx.fillText(line, canvas.width / 2, canvas.height / 2 + (i - (lines.length - 1) / 2) * 30));
+}
+
 // A PFM file's floats, rows top to bottom (the file stores them bottom to top).
 function parsePfm(buffer) {
     const bytes = new Uint8Array(buffer);
@@ -326,6 +340,7 @@ class Panel {
             list.append(label, help);
         }
         this.showReferences();
+        this.redraw();
     }
 
     // The command line of this panel: the shared settings, then the stage's.
@@ -448,6 +463,7 @@ class Panel {
 
     redraw() {
         if (this.rgb) drawImage(this.q('.image'), this.rgb, this.size.width, this.size.height);
+        else drawPrompt(this.q('.image'), ['Press Render', `${this.stage} renders the scene here`]);
     }
 
     // The scene's references (tests/reference/), the stage's kind first:
@@ -583,6 +599,7 @@ async function start() {
     page.panels = [new Panel(0), new Panel(1)];
     showComparison();
     await chooseLibraryScene(select.value);
+    page.panels.forEach((p) => p.redraw());
     select.onchange = () => chooseLibraryScene(select.value);
     // One scene among the files chosen (the first .scene, else the first
     // glTF file), the others its models.

@@ -141,6 +141,16 @@ def serve(directory):
     return proc, int(m.group(1))
 
 
+def check_prompt(browser, tmp):
+    """Before any render the first panel says what to do, on a canvas that
+    is not black (the page opened on a black square until Render)."""
+    lit = browser.evaluate(
+        "(() => { const c = document.querySelector('.panel canvas.image');"
+        " const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;"
+        " let n = 0; for (let i = 0; i < d.length; i += 4) n += d[i] > 128; return n; })()")
+    result(lit > 50, 'prompt-before-render', '%d light pixels (the prompt\'s text)' % lit)
+
+
 def check_images(browser, tmp):
     options = ['-W', str(SIZE), '--spp', str(SPP)]
     scene_path = 'scenes/%s.scene' % SCENE
@@ -278,7 +288,7 @@ def main():
             browser.evaluate('stagelight.inspect(1, 180, 200)')
             browser.screenshot(sys.argv[2], 1200, 1800)
             return
-        for check in (check_images, check_error, check_inspector, check_every_scene):
+        for check in (check_prompt, check_images, check_error, check_inspector, check_every_scene):
             try:
                 check(browser, tmp)
             except (RuntimeError, TimeoutError, EOFError, OSError, ValueError) as e:
