@@ -64,23 +64,34 @@ trap 'rm -rf "$work"' EXIT
 trap 'exit 1' HUP INT PIPE TERM
 tools=$root/build/tools
 
+# run_stage_test STAGE PROGRAM LOG [TEST] - a built stage test program (one
+# TEST() of it) against the project's STAGE, from tests/ as make test runs
+# it; its seeds are PATHCHECK_SEED's, from the caller.
+run_stage_test() {
+    rs_stage=$1
+    rs_prog=$2
+    rs_log=$3
+    shift 3
+    (cd "$root/tests" && RENDER=$root/build/$rs_stage/render STAGE=$rs_stage ROOT=$root "$rs_prog" "$@" || :) \
+        >"$rs_log" 2>&1 </dev/null
+}
+
 # run_tests STAGE K OUT - the statistical programs of the lab's grade at
-# set K's seeds; "1" into OUT when a TEST() fails at both, else "0".
+# set K's first seed, a failing TEST() again at its second (lablib.sh,
+# second_seed, as the grade counts it); "1" into OUT when one fails at
+# both, else "0".
 run_tests() {
     rt_alarm=0
     for rt_src in $(cat "$work/$1.programs"); do
         rt_name=$(basename "$rt_src" .c)
         rt_bin=$root/build/tests/$1/$rt_name
-        (cd "$root/tests" && PATHCHECK_SEED=$((1000000 + 10000 * $2)) RENDER=$root/build/$1/render \
-            STAGE=$1 ROOT=$root "$rt_bin" || :) >"$work/$1.log" 2>&1 </dev/null
+        PATHCHECK_SEED=$((1000000 + 10000 * $2)) run_stage_test "$1" "$rt_bin" "$work/$1.log"
         grep -Eq '^[0-9]+ passed, [0-9]+ failed' "$work/$1.log" || die "$rt_name crashed on $1 at set $2"
-        for rt_test in $(test_statuses "$rt_src" "$work/$1.log" - | awk '$2 == "FAIL" { print $1 }'); do
-            (cd "$root/tests" && PATHCHECK_SEED=$((5000000 + 10000 * $2)) RENDER=$root/build/$1/render \
-                STAGE=$1 ROOT=$root "$rt_bin" "$rt_test" || :) >"$work/$1.second.log" 2>&1 </dev/null
-            if ! one_test_passed "$work/$1.second.log" "$rt_test"; then
-                rt_alarm=1
-                echo "$1 set $2: $rt_name/$rt_test failed at both seeds" >&2
-            fi
+        for rt_test in $(test_statuses "$rt_src" "$work/$1.log" - |
+            second_seed "$rt_src" $((5000000 + 10000 * $2)) "$work/$1" run_stage_test "$1" "$rt_bin" |
+            awk '$2 == "FAIL" { print $1 }'); do
+            rt_alarm=1
+            echo "$1 set $2: $rt_name/$rt_test failed at both seeds" >&2
         done
     done
     echo "$rt_alarm" >"$3"

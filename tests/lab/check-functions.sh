@@ -51,6 +51,16 @@ libs=$(sed -n 3p "$work/flags")
 passed=0
 failed=0
 
+# run_one PROGRAM LOG [TEST] - a built function test program (one TEST()
+# of it), from tests/ as make test runs it, at most 60 s.  ("|| :" keeps
+# the subshell from becoming the program, so that a crash is the log's.)
+run_one() {
+    ro_prog=$1
+    ro_log=$2
+    shift 2
+    (cd "$root/tests" && "$root/tests/harness/with-timeout.sh" 60 "$ro_prog" "$@" || :) >"$ro_log" 2>&1 </dev/null
+}
+
 # build_and_run TREE STAGE OUT [FILE] - build the function test programs of
 # STAGE (in TREE, built) and run them; OUT/results gets "PROGRAM STATUS
 # TEST" a line, OUT/PROGRAM.log each program's output.  A program's object
@@ -91,28 +101,20 @@ build_and_run() {
         # TEST() again on its own, so that a crash fails only its own test,
         # as grade.sh counts a crashed program's tests.
         br_log=$br_out/$br_name.log
-        # ("|| :" after the program keeps the subshell from becoming it, so
-        # that the subshell, whose output is the log, reports a crash.)
-        (cd "$root/tests" && "$root/tests/harness/with-timeout.sh" 60 "$br_out/$br_name" || :) >"$br_log" 2>&1 </dev/null
+        run_one "$br_out/$br_name" "$br_log"
         # A statistical test that fails is run again at the grade's second
         # seed and counts as failed only when it fails there too, as in
         # grade.sh (lablib.sh, GRADE_SECOND_SEED).
         if grep -Eq '^[0-9]+ passed, [0-9]+ failed' "$br_log"; then
-            test_statuses "$br_src" "$br_log" - | while read -r br_test br_status; do
-                if [ "$br_status" = FAIL ] && is_statistical "$br_src"; then
-                    br_two=$br_out/$br_name.$br_test.second.log
-                    (cd "$root/tests" && PATHCHECK_SEED=$GRADE_SECOND_SEED \
-                        "$root/tests/harness/with-timeout.sh" 60 "$br_out/$br_name" "$br_test" || :) >"$br_two" 2>&1 </dev/null
-                    ! one_test_passed "$br_two" "$br_test" || br_status=ok
-                fi
-                echo "$br_name $br_status $br_test"
-            done >>"$br_out/results"
+            test_statuses "$br_src" "$br_log" - |
+                second_seed "$br_src" "$GRADE_SECOND_SEED" "$br_out/$br_name" run_one "$br_out/$br_name" |
+                awk -v name="$br_name" '{ print name, $2, $1 }' >>"$br_out/results"
             continue
         fi
         for br_test in $(test_names "$br_src"); do
             br_status=FAIL
             br_one=$br_out/$br_name.$br_test.log
-            (cd "$root/tests" && "$root/tests/harness/with-timeout.sh" 60 "$br_out/$br_name" "$br_test" || :) >"$br_one" 2>&1 </dev/null
+            run_one "$br_out/$br_name" "$br_one" "$br_test"
             if grep -q "^ok   $br_test\$" "$br_one" && grep -q "^1 passed, 0 failed" "$br_one"; then
                 br_status=ok
             fi

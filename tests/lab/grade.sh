@@ -180,6 +180,11 @@ if ! handout_build "$dir" "$work/build.log" "$programs" -j"$jobs"; then
     build_errors "$work/build.log" | head -n 20 | sed 's/^/    /'
 fi
 
+# run_one SRC LOG TEST - one TEST() of SRC's program in the handout.
+run_one() {
+    run_handout_test "$dir" "$1" "$2" "$limit" "$3" >/dev/null
+}
+
 # The records of grade.awk: the controls, then each program and its TEST()s.
 awk '{ printf "C\t%s\t%s\n", $1, $2 }' "$work/controls" >"$work/records"
 for src in $(handout_tests "$dir"); do
@@ -201,7 +206,8 @@ for src in $(handout_tests "$dir"); do
             test_statuses "$src" "$work/$name.$t.log" "$note" | awk -v t="$t" '$1 == t'
         done
     else
-        test_statuses "$src" "$work/$name.log" "$5" | second_seed "$dir" "$src" "$work/$name" "$limit"
+        test_statuses "$src" "$work/$name.log" "$5" |
+            second_seed "$src" "$GRADE_SECOND_SEED" "$work/$name" run_one "$src"
     fi | awk -v from="$from" -v name="$name" '{
         printf "T\t%s\t%s\t%s\t%s\n", from, name, $1, $2
         if ($3 == "second") printf "R\t%s\t%s\t%s\n", from, name, $1

@@ -288,16 +288,22 @@ one_test_passed() {
     grep -q "^ok   $2\$" "$1" && grep -q '^1 passed, 0 failed' "$1"
 }
 
-# second_seed DIR SRC LOGS LIMIT - "TEST STATUS" lines in, the same out,
-# but a statistical program's (SRC's) failing TEST() is run again on its own
-# at the second seed (run_handout_test in handout DIR, its log LOGS.TEST.
-# second.log, LIMIT seconds), and "TEST ok second" is its line when it
-# passes there.
+# second_seed SRC SEED LOGS RUNNER... - "TEST STATUS" lines in, the same
+# out, but a statistical program's (SRC's) failing TEST() is run again on
+# its own with PATHCHECK_SEED=SEED (the grade's: GRADE_SECOND_SEED) by
+# `RUNNER... LOG TEST`, which writes the run's output to LOG (here
+# LOGS.TEST.second.log), and "TEST ok second" is its line when it passes
+# there.  grade.sh, check-functions.sh and calibrate/grades.sh all count a
+# failure so, each with its own way of running a program.
 second_seed() {
+    sd_src=$1
+    sd_seed=$2
+    sd_logs=$3
+    shift 3
     while read -r sd_test sd_status; do
-        if [ "$sd_status" = FAIL ] && is_statistical "$2" && grep -q "^TEST($sd_test)" "$2"; then
-            PATHCHECK_SEED=$GRADE_SECOND_SEED run_handout_test "$1" "$2" "$3.$sd_test.second.log" "$4" "$sd_test" >/dev/null
-            if one_test_passed "$3.$sd_test.second.log" "$sd_test"; then
+        if [ "$sd_status" = FAIL ] && is_statistical "$sd_src" && grep -q "^TEST($sd_test)" "$sd_src"; then
+            PATHCHECK_SEED=$sd_seed "$@" "$sd_logs.$sd_test.second.log" "$sd_test"
+            if one_test_passed "$sd_logs.$sd_test.second.log" "$sd_test"; then
                 echo "$sd_test ok second"
                 continue
             fi

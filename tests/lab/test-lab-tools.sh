@@ -937,8 +937,12 @@ fi
 EOF2
     cp "$ss/build/tests/05_x/05_x" "$ss/build/tests/05_x/05_det"
     chmod +x "$ss/build/tests/05_x/05_x" "$ss/build/tests/05_x/05_det"
-    printf 'a FAIL\nb FAIL\n' | second_seed "$ss" "$ss/tests/stage/05_x.c" "$T/second" 5 >"$T/second.out" 2>&1
-    printf 'a FAIL\n' | second_seed "$ss" "$ss/tests/stage/05_det.c" "$T/second-det" 5 >>"$T/second.out" 2>&1
+    # As grade.sh runs one TEST(): run_handout_test in the handout.
+    ss_run() { run_handout_test "$ss" "$1" "$2" 5 "$3" >/dev/null; }
+    printf 'a FAIL\nb FAIL\n' | second_seed "$ss/tests/stage/05_x.c" "$GRADE_SECOND_SEED" "$T/second" \
+        ss_run "$ss/tests/stage/05_x.c" >"$T/second.out" 2>&1
+    printf 'a FAIL\n' | second_seed "$ss/tests/stage/05_det.c" "$GRADE_SECOND_SEED" "$T/second-det" \
+        ss_run "$ss/tests/stage/05_det.c" >>"$T/second.out" 2>&1
     printf 'a ok second\nb FAIL\na FAIL\n' >"$T/second.expected"
     same grade/second-seed-reruns-statistical-failures "$T/second.expected" "$T/second.out"
     printf '%s\n' 'P|05|05_x|-' 'T|05|05_x|a|ok' 'R|05|05_x|a' 'T|05|05_x|b|FAIL' | tr '|' '\t' >"$T/records"
