@@ -103,11 +103,9 @@ run_tests() {
 run_pages() {
     rp_alarm=0
     for rp_scene in $(paired_scenes "$1"); do
-        rp_options=$(paired_options "$1" "$rp_scene")
         rp_solution=$work/$2.$rp_scene.solution.pfm
-        # shellcheck disable=SC2086 # the options are words
-        "$root/build/$2/render" -q -t 1 -W 256 -H 256 $rp_options --seed $((1000 + $3)) \
-            -o "$work/$2.student.pfm" "$root/scenes/$rp_scene.scene" >"$work/$2.render.log" 2>&1 ||
+        paired_render "$root/build/$2/render" "$1" "$root/scenes/$rp_scene.scene" $((1000 + $3)) \
+            "$work/$2.student.pfm" -t 1 >"$work/$2.render.log" ||
             die "$2 did not render $rp_scene: $(head -n 3 "$work/$2.render.log")"
         rp_status=0
         "$tools/paired" "$work/$2.student.pfm" "$rp_solution" >"$work/$2.paired" 2>&1 || rp_status=$?
@@ -138,9 +136,8 @@ measure_lab() {
             >/dev/null 2>&1 || die "$(basename "$ml_src" .c) does not build for $ml_stage"
     done
     for ml_scene in $(paired_scenes "$1"); do
-        # shellcheck disable=SC2086
-        "$root/build/$ml_stage/render" -q -t 1 -W 256 -H 256 $(paired_options "$1" "$ml_scene") --seed "$PAIRED_SEED" \
-            -o "$work/$ml_stage.$ml_scene.solution.pfm" "$root/scenes/$ml_scene.scene" >/dev/null 2>&1 ||
+        paired_render "$root/build/$ml_stage/render" "$1" "$root/scenes/$ml_scene.scene" "$PAIRED_SEED" \
+            "$work/$ml_stage.$ml_scene.solution.pfm" -t 1 >/dev/null ||
             die "$ml_stage did not render $ml_scene"
     done
     : >"$work/$1.squares"

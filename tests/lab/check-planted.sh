@@ -216,10 +216,9 @@ grade_exact() {
 # threads, the student's with one: the same image, bit for bit (the
 # stages' determinism), so correct work is paired and never off.
 paired_check() {
-    pc_opts="-q -W 256 -H 256 $(paired_options 07 "$3") --seed $PAIRED_SEED"
-    # shellcheck disable=SC2086 # the options are words
-    if "$build/07_pathtrace/render" $pc_opts -t 2 -o "$work/$1.solution.pfm" "$root/scenes/$3.scene" >>"$work/log" 2>&1 &&
-        "$2" $pc_opts -t 1 -o "$work/$1.student.pfm" "$root/scenes/$3.scene" >>"$work/log" 2>&1; then
+    if paired_render "$build/07_pathtrace/render" 07 "$root/scenes/$3.scene" "$PAIRED_SEED" \
+        "$work/$1.solution.pfm" -t 2 >>"$work/log" &&
+        paired_render "$2" 07 "$root/scenes/$3.scene" "$PAIRED_SEED" "$work/$1.student.pfm" -t 1 >>"$work/log"; then
         "$build/tools/paired" "$work/$1.student.pfm" "$work/$1.solution.pfm" >"$work/grade" 2>&1 || true
         [ "$verbose" -eq 0 ] || sed "s|^|    $1: |" "$work/grade"
         if tail -n 1 "$work/grade" | grep -q ": $4\$"; then

@@ -196,9 +196,8 @@ paired_page() {
     if [ -f "$work/$1.1.pfm" ] && [ "$(cat "$work/$1.options")" = "$pp_options" ]; then
         pp_student=$work/$1.1.pfm
     fi
-    # shellcheck disable=SC2086 # the options are words
-    if [ ! -f "$pp_student" ] && ! "$render" -q -W 256 -H 256 $pp_options \
-        -o "$pp_student" "$dir/scenes/$2.scene" >"$work/render.log" 2>&1; then
+    if [ ! -f "$pp_student" ] &&
+        ! paired_render "$render" "$nn" "$dir/scenes/$2.scene" "$PAIRED_SEED" "$pp_student" >"$work/render.log"; then
         echo "    $1, paired: the render failed:"
         sed -n '1,5s/^/        /p' "$work/render.log"
         pp_status=1

@@ -436,6 +436,22 @@ paired_page_name() {
 PAIRED_SPP=16
 PAIRED_SEED=1
 
+# paired_render RENDER NN SCENE_FILE SEED OUT [OPTION...] - RENDER's image
+# of SCENE_FILE as lab NN's paired page renders it (paired_options, 256 x
+# 256) at SEED, into OUT, with the OPTIONs (-t N); its output on standard
+# output.  Every paired render is made by this one line: the solution's
+# (make-lab.sh), the student's (grade-pages.sh) and the checks'.
+paired_render() {
+    pr_render=$1
+    pr_scene=$3
+    pr_seed=$4
+    pr_out=$5
+    pr_options=$(paired_options "$2" "$(basename "$pr_scene" .scene)")
+    shift 5
+    # shellcheck disable=SC2086 # the options are words
+    "$pr_render" -q -W 256 -H 256 $pr_options --seed "$pr_seed" "$@" -o "$pr_out" "$pr_scene" 2>&1
+}
+
 GRADE_DEFAULT_SPP=64
 
 # The most samples per pixel --spp auto gives a page's renders (about two

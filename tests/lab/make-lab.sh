@@ -145,9 +145,8 @@ write_solution_renders() {
         >"$tmp/tests/reference/solution/README"
     for ws_scene in $ws_scenes; do
         ws_options="$(paired_options "$nn" "$ws_scene") --seed $PAIRED_SEED"
-        # shellcheck disable=SC2086 # the options are words
-        "$ws_render" -q -W 256 -H 256 $ws_options \
-            -o "$tmp/tests/reference/solution/$ws_scene.pfm" "$root/scenes/$ws_scene.scene" >/dev/null 2>&1 ||
+        paired_render "$ws_render" "$nn" "$root/scenes/$ws_scene.scene" "$PAIRED_SEED" \
+            "$tmp/tests/reference/solution/$ws_scene.pfm" >/dev/null ||
             die "the solution's render of $ws_scene failed"
         echo "    render -W 256 -H 256 $ws_options scenes/$ws_scene.scene" >>"$tmp/tests/reference/solution/README"
     done
