@@ -63,6 +63,16 @@ struct gltf_material {
     bool double_sided;
     enum gltf_alpha_mode alpha_mode;
     unsigned textures; /* enum gltf_texture bits */
+    /* No stage maps a texture: the base colour and emissive textures stand
+     * as their images' mean linear colour (decoded from sRGB), for the
+     * slots in `averaged`; the share of the emissive image's texels that
+     * glow; why a slot named in `textures` was not averaged ("" if it was). */
+    unsigned averaged; /* enum gltf_texture bits */
+    double base_color_mean[3];
+    double emissive_mean[3];
+    double emissive_glow; /* 0..1 */
+    char base_color_why[64];
+    char emissive_why[64];
     /* Extensions of the material that are none of the above, their names
      * separated by ", " (cut to fit; "" when none). */
     char other_extensions[160];

@@ -175,10 +175,12 @@ copy_materials(const tinygltf::Model &model, struct gltf_mesh *out, std::string 
         throw out_of_memory{format("out of memory for %zu materials", n)};
     }
     out->n_materials = n;
+    texture_means cache;
     for (size_t i = 0; i < n; i++) {
         if (!copy_material(model.materials[i], i, &out->materials[i], why)) {
             return false;
         }
+        average_textures(model, model.materials[i], &cache, &out->materials[i]);
     }
     return true;
 }

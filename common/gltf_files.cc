@@ -204,18 +204,3 @@ refuse_write(std::string *err, const std::string &, const std::vector<unsigned c
     return false;
 }
 
-// Images are accepted unread: texture decoding is attack surface we need not.
-bool
-skip_image(
-    tinygltf::Image *,
-    const int,
-    std::string *,
-    std::string *,
-    int,
-    int,
-    const unsigned char *,
-    int,
-    void *)
-{
-    return true;
-}

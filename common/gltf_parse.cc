@@ -324,7 +324,7 @@ run_tinygltf(
     std::string *why)
 {
     tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skip_image, nullptr);
+    loader.SetImageLoader(keep_image, nullptr);
     tinygltf::FsCallbacks fs =
         {guarded_file_exists, unexpanded_path, guarded_read_file, refuse_write, guard};
     loader.SetFsCallbacks(fs);

@@ -4,8 +4,9 @@
  * gltf_mesh.c); the loader's steps are in gltf_files.cc (reading
  * files, confined), gltf_parse.cc (GLB and JSON checks, tinygltf),
  * gltf_nodes.cc (transforms), gltf_accessors.cc (checks), gltf_copy.cc,
- * gltf_extras.cc (materials, cameras, lights) and gltf_dropped.cc (what no
- * stage models), which share gltf_shim.h.
+ * gltf_extras.cc (materials, cameras, lights), gltf_textures.cc (a
+ * texture's mean colour) and gltf_dropped.cc (what no stage models), which
+ * share gltf_shim.h.
  *
  * tinygltf parses the JSON and gathers the buffers; everything after that is
  * ours: choosing the nodes, checking every accessor against the bytes that
@@ -23,7 +24,9 @@
  *     accept only relative paths below the model's directory, without a
  *     ".." component or a URI scheme (data: URIs never reach them: tinygltf
  *     decodes those itself), and read at most GLTF_MAX_FILE_BYTES in all;
- *   - images are never decoded (Duck.glb has a texture; we need none);
+ *   - an image is decoded only when a material's base colour or emissive
+ *     texture names it, after its header's size is checked
+ *     (gltf_textures.cc: a texture stands as its mean colour);
  *   - sizes and offsets are checked in size_t with overflow guards before
  *     anything is read, and totals before anything is allocated;
  *   - no exception leaves this file: gltf_load catches everything, and an

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -113,17 +114,38 @@ bool guarded_read_file(
     void *user);
 bool
 refuse_write(std::string *err, const std::string &, const std::vector<unsigned char> &, void *);
-// tinygltf's image loader: images are never decoded.
-bool skip_image(
-    tinygltf::Image *,
+/* --- gltf_textures.cc: a texture as its image's mean colour -------------- */
+
+// tinygltf's image loader: an image is kept encoded (decoded only when a
+// material's colour needs its mean).
+bool keep_image(
+    tinygltf::Image *image,
     const int,
     std::string *,
     std::string *,
     int,
     int,
-    const unsigned char *,
-    int,
+    const unsigned char *bytes,
+    int size,
     void *);
+
+// A texture's mean, once taken: the mean linear colour, the share of texels
+// that glow, or why it could not be had.
+struct texture_mean_entry {
+    bool ok;
+    double mean[3];
+    double glow;
+    std::string why;
+};
+
+typedef std::map<int, texture_mean_entry> texture_means;  // by texture index
+// The means of m's base colour and emissive textures into out (averaged,
+// *_mean, emissive_glow, *_why).
+void average_textures(
+    const tinygltf::Model &model,
+    const tinygltf::Material &m,
+    texture_means *cache,
+    gltf_material *out);
 
 /* --- the steps of a load -------------------------------------------------- */
 

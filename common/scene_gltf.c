@@ -59,13 +59,44 @@ clamp01(double x)
     return (real)(x < 0 ? 0 : x > 1 ? 1 : x);
 }
 
+/* baseColorFactor, times its texture's mean where it was averaged
+ * (gltf_textures.cc: no stage maps a texture). */
 static vec3
 base_color(const struct gltf_material *g)
 {
+    const double *mean = g->base_color_mean;
+    bool textured = g->averaged & GLTF_TEX_BASE_COLOR;
     return vec3_make(
-        clamp01(g->base_color[0]),
-        clamp01(g->base_color[1]),
-        clamp01(g->base_color[2]));
+        clamp01(g->base_color[0] * (textured ? mean[0] : 1)),
+        clamp01(g->base_color[1] * (textured ? mean[1] : 1)),
+        clamp01(g->base_color[2] * (textured ? mean[2] : 1)));
+}
+
+/* emissiveFactor x strength, times its texture's mean where it was averaged. */
+static vec3
+emission(const struct gltf_material *g)
+{
+    const double *mean = g->emissive_mean;
+    bool textured = g->averaged & GLTF_TEX_EMISSIVE;
+    return vec3_make(
+        (real)(g->emissive[0] * (textured ? mean[0] : 1)),
+        (real)(g->emissive[1] * (textured ? mean[1] : 1)),
+        (real)(g->emissive[2] * (textured ? mean[2] : 1)));
+}
+
+/* Whether the material is a light.  It must emit; with an emissive texture
+ * averaged, its glow must also cover at least half of the texture's texels
+ * (a car's lamp), or its surface be black.  A glow on less than half is a
+ * detail of a surface that reflects (a helmet's lights): no stage models a
+ * surface that does both, and the larger part decides. */
+static bool
+is_emitter(const struct gltf_material *g)
+{
+    if (vec3_is_zero(emission(g))) {
+        return false;
+    }
+    bool textured = g->averaged & GLTF_TEX_EMISSIVE;
+    return !textured || g->emissive_glow >= 0.5 || vec3_is_zero(base_color(g));
 }
 
 static const char *
@@ -85,11 +116,25 @@ static void
 note_textures(const struct gltf_material *g, struct mapping *out)
 {
     vec3 c = base_color(g);
-    if (g->textures & GLTF_TEX_BASE_COLOR) {
+    if ((g->textures & GLTF_TEX_BASE_COLOR) && (g->averaged & GLTF_TEX_BASE_COLOR)) {
+        const double *m = g->base_color_mean;
         snprintf(
             out->why[DROP_BASE_COLOR_TEXTURE],
             sizeof out->why[0],
-            "baseColorTexture not modelled; using baseColorFactor (%g, %g, %g)",
+            "baseColorTexture not modelled; using its mean (%.3g, %.3g, %.3g) x baseColorFactor: "
+            "(%.3g, %.3g, %.3g)",
+            m[0],
+            m[1],
+            m[2],
+            (double)c.x,
+            (double)c.y,
+            (double)c.z);
+    } else if (g->textures & GLTF_TEX_BASE_COLOR) {
+        snprintf(
+            out->why[DROP_BASE_COLOR_TEXTURE],
+            sizeof out->why[0],
+            "baseColorTexture not modelled (%s); using baseColorFactor (%g, %g, %g)",
+            g->base_color_why,
             (double)c.x,
             (double)c.y,
             (double)c.z);
@@ -114,14 +159,29 @@ note_textures(const struct gltf_material *g, struct mapping *out)
             sizeof out->why[0],
             "occlusionTexture not modelled; ignored (light is traced, not baked)");
     }
-    if (g->textures & GLTF_TEX_EMISSIVE) {
+    vec3 e = emission(g);
+    if ((g->textures & GLTF_TEX_EMISSIVE) && (g->averaged & GLTF_TEX_EMISSIVE)) {
         snprintf(
             out->why[DROP_EMISSIVE_TEXTURE],
             sizeof out->why[0],
-            "emissiveTexture not modelled; using emissiveFactor x strength (%g, %g, %g)",
-            g->emissive[0],
-            g->emissive[1],
-            g->emissive[2]);
+            is_emitter(g) ? "emissiveTexture not modelled; emitting its mean x emissiveFactor x "
+                            "strength (%.3g, %.3g, %.3g) (it glows on %.0f%% of its texels)"
+                          : "emissiveTexture not modelled; its glow (%.3g, %.3g, %.3g on "
+                            "average) is on %.0f%% of its texels: a surface that reflects, the "
+                            "glow dropped",
+            (double)e.x,
+            (double)e.y,
+            (double)e.z,
+            100 * g->emissive_glow);
+    } else if (g->textures & GLTF_TEX_EMISSIVE) {
+        snprintf(
+            out->why[DROP_EMISSIVE_TEXTURE],
+            sizeof out->why[0],
+            "emissiveTexture not modelled (%s); using emissiveFactor x strength (%g, %g, %g)",
+            g->emissive_why,
+            (double)e.x,
+            (double)e.y,
+            (double)e.z);
     }
 }
 
@@ -151,7 +211,7 @@ note_alpha_and_extensions(const struct gltf_material *g, struct mapping *out)
 static void
 map_emitter(const struct gltf_material *g, struct mapping *out)
 {
-    out->emission = vec3_make((real)g->emissive[0], (real)g->emissive[1], (real)g->emissive[2]);
+    out->emission = emission(g);
     out->two_sided = g->double_sided;
     out->material.kind = MAT_DIFFUSE;
     vec3 c = base_color(g);
@@ -240,8 +300,7 @@ static void
 map_material(const struct gltf_material *g, struct mapping *out)
 {
     memset(out, 0, sizeof *out);
-    bool emits = g->emissive[0] > 0 || g->emissive[1] > 0 || g->emissive[2] > 0;
-    if (emits) {
+    if (is_emitter(g)) {
         map_emitter(g, out);
     } else if (g->has_transmission && g->transmission > 0) {
         map_glass(g, out);

@@ -103,7 +103,14 @@ main(int argc, char **argv)
     }
     renderer.scene = &run.scene;
     renderer.world = world_make(&run.scene);
+    struct light_picker picker;
+    struct diag err;
+    if (!light_picker_build(&run.scene, &picker, &err)) {
+        return run_fail(&run, &err, EXIT_RESOURCES);
+    }
+    renderer.shadow.picker = &picker;
     int status = render(&renderer, &run);
+    light_picker_free(&picker);
     run_free(&run);
     return status;
 }

@@ -299,10 +299,21 @@ direct_irradiance(
     if (sampling->samples == 0) {
         return e;
     }
-    for (int i = 0; i < s->n_area_lights; i++) {
+    const struct light_picker *picker = sampling->picker;
+    int n_own = picker ? picker->n_own : s->n_area_lights;
+    for (int k = 0; k < n_own; k++) {
+        int i = picker ? picker->own[k] : k;
         struct emitter light = {.area = &s->area_lights[i]};
         inspect_light(st, TRACE_AREA_LIGHT, i);
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
+    }
+    if (picker && picker->cdf) {
+        /* The emitting triangles: one, picked, stands for all (picker.c). */
+        int i = light_pick(picker, rng_uniform(rng));
+        struct emitter light = {.area = &s->area_lights[i]};
+        inspect_light(st, TRACE_AREA_LIGHT, i);
+        real p = light_pick_probability(s, picker, i);
+        e = vec3_add(e, vec3_scale(light_irradiance(w, h, &light, sampling, rng, st), 1 / p));
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
         struct emitter light = {.sphere = &s->sphere_lights[i]};

@@ -15,12 +15,24 @@
  * light is behind the surface.  Occlusion is the caller's business. */
 vec3 point_irradiance(const struct hit *h, vec3 from, vec3 intensity);
 
+/* The area lights as the shadow rays see them (picker.c): each of own[0..n_own)
+ * (`area_light` statements) on its own, and the emitting triangles (a glTF
+ * mesh's: thousands) as one light, of which each shading point picks one
+ * by the cumulative shares cdf[0..n) (NULL: no emitting triangle). */
+struct light_picker {
+    int *own;
+    int n_own;
+    double *cdf;
+    int n;
+};
+
 /* How area lights are sampled: `samples` shadow rays per light, or, when
  * adaptive[0] > 0, adaptive[0] probe rays and adaptive[1] more only where
- * the probes disagree (a penumbra). */
+ * the probes disagree (a penumbra); picker NULL: every area light on its own. */
 struct shadow_sampling {
     int samples;
     int adaptive[2];
+    const struct light_picker *picker;
 };
 
 /* The extra statistics counter: shading points that took the penumbra path. */
@@ -59,7 +71,8 @@ bool unoccluded_irradiance(const struct hit *h, const struct emitter *light, vec
 /* For --pixel --trace (inspect.h), called only when inspecting: record the
  * shadow ray and, when it is not clear, the nearest surface in its way
  * (found by a second, closest-hit query). */
-void inspect_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st);
+void
+inspect_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st);
 
 /* Whether the segment from the surface at h to the point `to` is clear:
  * one shadow ray, an any-hit query. */
@@ -77,5 +90,13 @@ vec3 direct_irradiance(
     const struct shadow_sampling *sampling,
     struct rng *rng,
     struct stats *st);
+
+/* picker.c: the picker of the scene's lights (false: out of memory); the
+ * light u in [0,1) picks; the probability that `light` is picked (1 for a
+ * light sampled on its own, or without a picker). */
+bool light_picker_build(const struct scene *s, struct light_picker *p, struct diag *err);
+void light_picker_free(struct light_picker *p);
+int light_pick(const struct light_picker *p, real u);
+real light_pick_probability(const struct scene *s, const struct light_picker *p, int light);
 
 #endif /* LIGHT_H */

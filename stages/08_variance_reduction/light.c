@@ -211,9 +211,12 @@ light_sample_irradiance(
     }
     vec3 through = transmittance(w, h, y, st);
     *blocked = through.x < 1 || through.y < 1 || through.z < 1;
-    /* y's density per steradian: r^2 / (A cos(theta')), times its pick's probability. */
-    real pdf = light_pick_probability(w->scene, sampling, light) * dist2 / cos_light_area;
-    real weight = mis_shadow_weight(sampling, pdf, cos_surface);
+    /* y's density per steradian once its light is picked: r^2 / (A cos(theta'));
+     * MIS weighs it with the pick's probability (direct_irradiance divides by it). */
+    real pdf = dist2 / cos_light_area;
+    int number = (int)(light - w->scene->area_lights);
+    real pick = light_pick_probability(w->scene, sampling->picker, number);
+    real weight = mis_shadow_weight(sampling, pick * pdf, cos_surface);
     vec3 l = vec3_scale(light->radiance, cos_surface * weight / pdf);
     vec3 e = vec3_mul(through, l);
     inspect_area_sample(st, light, y, e);
@@ -319,25 +322,28 @@ direct_irradiance(
     if (sampling->samples == 0) {
         return e;
     }
-    for (int i = 0; i < s->n_area_lights; i++) {
+    const struct light_picker *picker = sampling->picker;
+    int n_own = picker ? picker->n_own : s->n_area_lights;
+    for (int k = 0; k < n_own; k++) {
+        int i = picker ? picker->own[k] : k;
         struct emitter light = {.area = &s->area_lights[i]};
-        if (light.area->triangle && sampling->pick_cdf) {
-            continue; /* one triangle is picked for all, below */
-        }
         inspect_light(st, TRACE_AREA_LIGHT, i);
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
+    }
+    if (picker && picker->cdf) {
+        /* The emitting triangles: one, picked, stands for all (picker.c). */
+        real u;
+        int group = DRAW_LIGHT + s->n_area_lights + s->n_sphere_lights;
+        sampler_2d(sampling->id, sampling->depth, group, rng, &u, &u);
+        int i = light_pick(picker, u);
+        struct emitter light = {.area = &s->area_lights[i]};
+        inspect_light(st, TRACE_AREA_LIGHT, i);
+        real p = light_pick_probability(s, picker, i);
+        e = vec3_add(e, vec3_scale(light_irradiance(w, h, &light, sampling, rng, st), 1 / p));
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
         struct emitter light = {.sphere = &s->sphere_lights[i]};
         inspect_light(st, TRACE_SPHERE_LIGHT, i);
-        e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
-    }
-    if (sampling->pick_cdf) {
-        real u;
-        int group = DRAW_LIGHT + s->n_area_lights + s->n_sphere_lights;
-        sampler_2d(sampling->id, sampling->depth, group, rng, &u, &u);
-        struct emitter light = {.area = light_pick(s, sampling->pick_cdf, u)};
-        inspect_light(st, TRACE_AREA_LIGHT, (int)(light.area - s->area_lights));
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     return e;

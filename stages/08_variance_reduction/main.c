@@ -125,7 +125,7 @@ parse_command_line(struct run *run, int argc, char **argv, struct renderer *rend
             .name = "no-light-pick",
             .kind = OPT_UNSET,
             .dest = &renderer->pick_lights,
-            .help = "shadow rays to every emitting triangle, none picked by power",
+            .help = "emitting triangles picked by area (stage 07's way), not by power",
         },
         {
             .name = "time",
@@ -233,24 +233,24 @@ main(int argc, char **argv)
     renderer.world = world_make(&run.scene);
     /* Testing a few primitives costs less than a tree (docs/stages/08_*.md). */
     use_bvh = use_bvh && renderer.world.n_prims > renderer.brute_force_max;
-    /* MIS and the picker refine the fixed shadow rays (not the adaptive ones). */
+    /* MIS refines the fixed shadow rays (not the adaptive ones). */
     bool fixed = renderer.nee && renderer.shadow.adaptive[0] == 0;
     renderer.shadow.mis = renderer.shadow.mis && fixed;
-    real *pick_cdf = NULL;
-    if (renderer.pick_lights && fixed && !light_picker_build(&run.scene, &pick_cdf, &err)) {
+    struct light_picker picker;
+    if (!light_picker_build(&run.scene, renderer.pick_lights, &picker, &err)) {
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
-    renderer.shadow.pick_cdf = pick_cdf;
+    renderer.shadow.picker = &picker;
     double start = clock_seconds(); /* the tree, unless --no-bvh; its size in --stats */
     if (use_bvh && !bvh_build(&renderer.world.bvh, &renderer.world, &err)) {
-        free(pick_cdf);
+        light_picker_free(&picker);
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
     run.rep.seconds_build = use_bvh ? clock_seconds() - start : 0;
     report_set(&run.rep, "bvh_nodes", renderer.world.bvh.n_nodes, true);
     report_set(&run.rep, "bvh_aside", renderer.world.bvh.n_aside, true);
     int status = render(&renderer, &run);
-    free(pick_cdf);
+    light_picker_free(&picker);
     bvh_free(&renderer.world.bvh);
     run_free(&run);
     return status;

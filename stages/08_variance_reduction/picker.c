@@ -1,72 +1,97 @@
 /*
- * picker.c - the light picker: of the emitting triangles (of a glTF mesh,
- * thousands of them), the shadow rays of a path vertex go to one, picked in
- * proportion to its power (Shirley, Wang and Zimmerman, "Monte Carlo
- * Techniques for Direct Lighting Calculations", 1996), not to every one;
- * dividing by the pick's probability keeps the estimate unbiased.
+ * picker.c - the light picker.  An emissive glTF material makes each of its
+ * mesh's triangles a light, thousands of them; shadow rays to every one at
+ * every shading point would cost in proportion to their number.  So the
+ * emitting triangles are one light: a shading point sends its shadow rays
+ * to one triangle i, picked with probability p_i, and divides what they
+ * bring by p_i.  The expected value is the sum over all the triangles
+ * (unbiased); the cost, one binary search.  p_i is in proportion to the
+ * triangle's power (Shirley, Wang and Zimmerman, "Monte Carlo Techniques
+ * for Direct Lighting Calculations", 1996): a bright triangle gets more
+ * rays than a dim one of its size, where stage 07's picks by area gave it
+ * as many (--no-light-pick).
  */
 #include "light.h"
 
 #include <stdlib.h>
 
-/* A triangle light's power over pi (area x luminance, x 2 two-sided); 0 for the others. */
-static real
-light_power(const struct area_light *light)
+/* A light's share of the picks: a triangle's power over pi (area x luminance,
+ * x 2 two-sided), or its area; 0 for a light sampled on its own. */
+static double
+light_weight(const struct area_light *light, bool by_power)
 {
     vec3 l = light->radiance;
-    real luminance = (real)0.2126 * l.x + (real)0.7152 * l.y + (real)0.0722 * l.z;
-    return light->triangle ? area_light_area(light) * luminance * (light->two_sided ? 2 : 1) : 0;
+    double luminance = 0.2126 * l.x + 0.7152 * l.y + 0.0722 * l.z;
+    double power = luminance * (light->two_sided ? 2 : 1);
+    return light->triangle ? (double)area_light_area(light) * (by_power ? power : 1) : 0;
+}
+
+void
+light_picker_free(struct light_picker *p)
+{
+    free(p->own);
+    free(p->cdf);
+    *p = (struct light_picker){0};
 }
 
 bool
-light_picker_build(const struct scene *s, real **cdf, struct diag *err)
+light_picker_build(const struct scene *s, bool by_power, struct light_picker *p, struct diag *err)
 {
     int n = s->n_area_lights;
-    *cdf = malloc((size_t)(n + 1) * sizeof **cdf);
-    if (!*cdf) {
+    *p = (struct light_picker){.n = n};
+    p->own = malloc((size_t)(n + 1) * sizeof *p->own);
+    p->cdf = malloc((size_t)(n + 1) * sizeof *p->cdf);
+    if (!p->own || !p->cdf) {
+        light_picker_free(p);
         diag_set(err, NULL, 0, 0, "out of memory for the picker of %d lights", n);
         return false;
     }
-    real total = 0;
+    /* Weights over the largest: a sum of at most n terms <= 1 cannot overflow. */
+    double largest = 0;
     for (int i = 0; i < n; i++) {
-        total += light_power(&s->area_lights[i]);
-        (*cdf)[i] = total;
+        largest = fmax(largest, light_weight(&s->area_lights[i], by_power));
+    }
+    double total = 0;
+    for (int i = 0; i < n; i++) {
+        if (!s->area_lights[i].triangle) {
+            p->own[p->n_own++] = i;
+        }
+        total += largest > 0 ? light_weight(&s->area_lights[i], by_power) / largest : 0;
+        p->cdf[i] = total;
     }
     for (int i = 0; i < n; i++) {
         /* The last bins end at 1 exactly: every u < 1 finds a light. */
-        (*cdf)[i] = (*cdf)[i] == total ? 1 : (*cdf)[i] / total;
+        p->cdf[i] = p->cdf[i] == total ? 1 : p->cdf[i] / total;
     }
     if (!(total > 0)) {
-        free(*cdf); /* no emitting triangle: nothing to pick */
-        *cdf = NULL;
+        free(p->cdf); /* no emitting triangle: nothing to pick */
+        p->cdf = NULL;
     }
     return true;
 }
 
-real
-light_pick_probability(
-    const struct scene *s,
-    const struct shadow_sampling *sampling,
-    const struct area_light *light)
+int
+light_pick(const struct light_picker *p, real u)
 {
-    const real *cdf = sampling->pick_cdf;
-    int i = (int)(light - s->area_lights);
-    return !cdf || !light->triangle ? 1 : cdf[i] - (i > 0 ? cdf[i - 1] : 0);
-}
-
-const struct area_light *
-light_pick(const struct scene *s, const real *cdf, real u)
-{
-    /* The first bin ending past u (binary search; the others' are empty). */
+    /* The first bin ending past u (binary search; a light on its own has an empty one). */
     int lo = 0;
-    int hi = s->n_area_lights - 1;
+    int hi = p->n - 1;
     while (lo < hi) {
         int mid = lo + (hi - lo) / 2;
-        if (cdf[mid] > u) {
+        if (p->cdf[mid] > u) {
             hi = mid;
         } else {
             lo = mid + 1;
         }
     }
-    return &s->area_lights[lo];
+    return lo;
+}
+
+real
+light_pick_probability(const struct scene *s, const struct light_picker *p, int light)
+{
+    if (!p || !p->cdf || !s->area_lights[light].triangle) {
+        return 1;
+    }
+    return (real)(p->cdf[light] - (light > 0 ? p->cdf[light - 1] : 0));
 }

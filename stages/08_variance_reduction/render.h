@@ -70,7 +70,7 @@ struct renderer {
     real rr_threshold; /* ... survival max(beta) / rr_threshold (at most RR_MAX_SURVIVAL) */
     int sampler; /* enum sampler_kind */
     int brute_force_max; /* no BVH for scenes of at most this many primitives */
-    bool pick_lights; /* the emitting triangles picked by power (picker.c) */
+    bool pick_lights; /* the emitting triangles picked by power, not by area (picker.c) */
     real time_limit; /* seconds; 0: none */
 };
 

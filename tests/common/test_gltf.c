@@ -1719,6 +1719,133 @@ TEST(mutation_fuzz)
     free(bytes);
 }
 
+/* --- textures as their mean colour (gltf_textures.cc) --------------------- */
+
+/* A triangle .glb whose material 0 is `material`, with images and textures
+ * as `members` says. */
+static const char *
+textured_glb(const char *name, const char *material, const char *members)
+{
+    struct meshgen_mesh m = {0};
+    static const double corners[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    static const unsigned tri[3] = {0, 1, 2};
+    if (!meshgen_alloc(&m, 3, 1, false)) {
+        return NULL;
+    }
+    memcpy(m.positions, corners, sizeof corners);
+    memcpy(m.indices, tri, sizeof tri);
+    struct meshgen_glb_options opts = {.material = material, .members = members};
+    const char *path = test_tmp_path(name);
+    bool ok = meshgen_write_glb(&m, path, &opts);
+    meshgen_free(&m);
+    return ok ? path : NULL;
+}
+
+#define TEXTURES(uri) "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"" uri "\"}]"
+
+TEST(base_colour_and_emissive_textures_are_their_mean)
+{
+    REQUIRE_GLTF();
+    CHECK(test_write_texture("half.png", 4) && test_write_texture("quarter.png", 2));
+    const char *both = textured_glb(
+        "both.glb",
+        "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}},"
+        "\"emissiveTexture\":{\"index\":0},\"emissiveFactor\":[1,1,1]}",
+        TEXTURES("half.png"));
+    const char *quarter = textured_glb(
+        "quarter.glb",
+        "{\"emissiveTexture\":{\"index\":0},\"emissiveFactor\":[1,1,1]}",
+        TEXTURES("quarter.png"));
+    struct gltf_mesh m = {0};
+    if (!both || !quarter || !load(both, &m)) {
+        CHECK(false);
+        return;
+    }
+    static const int codes[3] = {204, 102, 51};
+    const struct gltf_material *g = &m.materials[0];
+    CHECK(g->averaged == (GLTF_TEX_BASE_COLOR | GLTF_TEX_EMISSIVE));
+    for (int c = 0; c < 3; c++) {
+        /* Half the texels at the code's linear value: the mean is half of
+         * it, not half of the code (an sRGB mean would be 2.2x too bright). */
+        double want = test_srgb8_linear(codes[c]) / 2;
+        CHECK_NEAR(g->base_color_mean[c], want, 1e-12);
+        CHECK_NEAR(g->emissive_mean[c], want, 1e-12);
+    }
+    CHECK_NEAR(g->emissive_glow, 0.5, 0);
+    CHECK(g->base_color_why[0] == 0 && g->emissive_why[0] == 0);
+    gltf_free(&m);
+    if (load(quarter, &m)) {
+        CHECK_NEAR(m.materials[0].emissive_glow, 0.25, 0);
+        CHECK_NEAR(m.materials[0].emissive_mean[0], test_srgb8_linear(204) / 4, 1e-12);
+    }
+    gltf_free(&m);
+}
+
+static bool
+write_bytes(const char *path, const void *bytes, size_t n)
+{
+    FILE *f = fopen(path, "wb");
+    bool ok = f && fwrite(bytes, 1, n, f) == n;
+    return (f ? fclose(f) == 0 : false) && ok;
+}
+
+/* Bytes of a PNG's signature and header chunk stating width x height, and
+ * nothing after it: the size is read, the image is never decoded. */
+static bool
+write_png_header(const char *name, uint32_t width, uint32_t height)
+{
+    unsigned char b[33] =
+        {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R'};
+    for (int i = 0; i < 4; i++) {
+        b[16 + i] = (unsigned char)(width >> (24 - 8 * i));
+        b[20 + i] = (unsigned char)(height >> (24 - 8 * i));
+    }
+    b[24] = 8; /* bit depth; colour type 0 and the rest 0; no CRC check is reached */
+    return write_bytes(test_tmp_path(name), b, sizeof b);
+}
+
+TEST(textures_that_cannot_be_averaged_say_why)
+{
+    REQUIRE_GLTF();
+    /* A JPEG's start, an APP0 segment and a frame header of 65535 x 65535. */
+    static const unsigned char jpeg[] =
+        {0xff, 0xd8, 0xff, 0xe0, 0, 4, 'J', 'F', 0xff, 0xc0, 0, 11, 8, 0xff, 0xff, 0xff, 0xff, 3};
+    CHECK(write_png_header("huge.png", 100000, 100000));
+    CHECK(write_bytes(test_tmp_path("huge.jpg"), jpeg, sizeof jpeg));
+    CHECK(write_bytes(test_tmp_path("odd.gif"), "GIF89a", 6));
+    CHECK(write_png_header("broken.png", 4, 4));
+
+    static const struct {
+        const char *uri, *why;
+    } cases[] = {
+        {"huge.png", "image 0 is 100000 x 100000, over the 67108864 texels averaged"},
+        {"huge.jpg", "image 0 is 65535 x 65535, over the 67108864 texels averaged"},
+        {"odd.gif", "image 0 is neither PNG nor JPEG"},
+        {"broken.png", "image 0 could not be decoded"},
+    };
+
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char members[256];
+        snprintf(members, sizeof members, TEXTURES("%s"), cases[i].uri);
+        const char *path = textured_glb(
+            "bad.glb",
+            "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}",
+            members);
+        struct gltf_mesh m = {0};
+        if (!path || !load(path, &m)) {
+            CHECK_MSG(false, "%s", cases[i].uri);
+            continue;
+        }
+        CHECK_MSG(
+            m.materials[0].averaged == 0
+                && strcmp(m.materials[0].base_color_why, cases[i].why) == 0,
+            "%s: '%s'",
+            cases[i].uri,
+            m.materials[0].base_color_why);
+        gltf_free(&m);
+    }
+}
+
 TEST_MAIN(
     TEST_ENTRY(stub_message),
     TEST_ENTRY(free_zero_mesh),
@@ -1760,6 +1887,8 @@ TEST_MAIN(
     TEST_ENTRY(deeply_nested_json),
     TEST_ENTRY(bin_chunk_shared_once),
     TEST_ENTRY(instancing_total_limit),
+    TEST_ENTRY(base_colour_and_emissive_textures_are_their_mean),
+    TEST_ENTRY(textures_that_cannot_be_averaged_say_why),
     TEST_ENTRY(external_buffers_inside),
     TEST_ENTRY(external_buffers_outside),
     TEST_ENTRY(external_buffers_symlinks),

@@ -613,3 +613,29 @@ test_json_number(const char *path, const char *key, double *out)
     free(text);
     return ok;
 }
+
+double
+test_srgb8_linear(int k)
+{
+    double v = k / 255.0;
+    return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
+}
+
+bool
+test_write_texture(const char *name, int lit)
+{
+    struct image img = {0};
+    struct diag err = {0};
+    if (!image_alloc(&img, 4, 2, &err)) {
+        return false;
+    }
+    static const int codes[3] = {204, 102, 51};
+    for (int t = 0; t < 8; t++) {
+        for (int c = 0; c < 3; c++) {
+            img.rgb[3 * t + c] = t < lit ? (float)test_srgb8_linear(codes[c]) : 0;
+        }
+    }
+    bool ok = image_write(&img, test_tmp_path(name), &err);
+    image_free(&img);
+    return ok;
+}

@@ -11,6 +11,9 @@
  *    stage's warnings and its --strict verdict are the same too.
  *  - `material NAME` on the line overrides the file: an emissive red file
  *    renders as the grey line's material, with no warning.
+ *  - Textures stand as their images' mean colour: a base colour texture
+ *    renders as the hand-written albedo of its mean; an emissive texture
+ *    glowing on a quarter of its texels leaves the surface reflecting.
  *  - Each kind of dropped feature (textures, roughness and metalness in
  *    between, tints, alpha, other extensions) gives its warning line
  *    naming the file, the material and what is used instead, the image is
@@ -165,7 +168,7 @@ struct dropped_case {
     const char *says;
 };
 
-/* A 1x1 texture: its bytes are never decoded. */
+/* A texture of three bytes: no image format, so its mean cannot be had. */
 #define TEXTURE \
     "\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"data:image/png;base64,AAAA\"}]"
 
@@ -173,7 +176,8 @@ static const struct dropped_case dropped[] = {
     {"{\"name\":\"duck\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0},"
      "\"metallicFactor\":0}}",
      TEXTURE,
-     "material 'duck': baseColorTexture not modelled; using baseColorFactor (1, 1, 1)"},
+     "material 'duck': baseColorTexture not modelled (image 0 is neither PNG nor JPEG); using "
+     "baseColorFactor (1, 1, 1)"},
     {"{\"name\":\"bumpy\",\"normalTexture\":{\"index\":0},\"pbrMetallicRoughness\":"
      "{\"metallicFactor\":0}}",
      TEXTURE,
@@ -363,7 +367,75 @@ TEST(each_dropped_file_feature_warns_and_strict_refuses)
     }
 }
 
+/* Textures stand as their images' mean colour times the factor (no stage
+ * maps a texture): a base colour texture half lit with the sRGB codes
+ * (204, 102, 51) renders bit for bit as the diffuse albedo of half their
+ * linear values times baseColorFactor; an emissive texture that glows on a
+ * quarter of its texels leaves a surface that reflects its base colour, as
+ * written by hand, its glow dropped; each says so, and --strict refuses. */
+TEST(textures_render_as_their_mean_colour)
+{
+    REQUIRE_GLTF();
+    CHECK(test_write_texture("half.png", 4) && test_write_texture("quarter.png", 2));
+    const char *members = "\"textures\":[{\"source\":0},{\"source\":1}],"
+                          "\"images\":[{\"uri\":\"half.png\"},{\"uri\":\"quarter.png\"}]";
+    struct meshgen_glb_options opts = {.members = members};
+
+    struct {
+        const char *name, *material, *says;
+        double albedo[3];
+    } cases[] = {
+        {"painted",
+         "{\"name\":\"painted\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0},"
+         "\"baseColorFactor\":[1,0.5,1,1],\"metallicFactor\":0}}",
+         "material 'painted': baseColorTexture not modelled; using its mean",
+         {test_srgb8_linear(204) / 2, test_srgb8_linear(102) / 2 * 0.5, test_srgb8_linear(51) / 2}},
+        {"helmet",
+         "{\"name\":\"helmet\",\"emissiveTexture\":{\"index\":1},\"emissiveFactor\":[1,1,1],"
+         "\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.6,0.3,0.2,1],\"metallicFactor\":0}}",
+         "material 'helmet': emissiveTexture not modelled; its glow",
+         {0.6, 0.3, 0.2}},
+    };
+
+    static const double centre[3] = {0, 0.2, 0};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        struct meshgen_mesh m = meshgen_icosphere(2, 0.5, centre);
+        char file[64];
+        snprintf(file, sizeof file, "%s.glb", cases[i].name);
+        opts.material = cases[i].material;
+        bool written = m.n_triangles > 0 && meshgen_write_glb(&m, test_tmp_path(file), &opts);
+        meshgen_free(&m);
+        const char *from_file =
+            stagecheck_scene("tex_file.scene", SCENE_HEAD "mesh file %s\n", file);
+        const char *by_hand = stagecheck_scene(
+            "tex_hand.scene",
+            SCENE_HEAD "material m diffuse albedo %.17g %.17g %.17g\nmesh file %s material m\n",
+            cases[i].albedo[0],
+            cases[i].albedo[1],
+            cases[i].albedo[2],
+            file);
+        if (!written || !from_file || !by_hand) {
+            CHECK_MSG(false, "%s: cannot write the files", cases[i].name);
+            continue;
+        }
+        const char *a = test_tmp_path("tex_file.pfm");
+        const char *b = test_tmp_path("tex_hand.pfm");
+        static char text[OUTPUT_CAP];
+        static char hand[OUTPUT_CAP];
+        CHECK_MSG(render_to(from_file, a, false, text) == 0, "%s", text);
+        CHECK_MSG(
+            strstr(text, cases[i].says) != NULL,
+            "expected '%s' in:\n%s",
+            cases[i].says,
+            text);
+        CHECK_MSG(render_to(by_hand, b, false, hand) == 0, "%s", hand);
+        CHECK_MSG(test_same_file(a, b), "%s: not the image of its mean colour", cases[i].name);
+        CHECK_MSG(render_to(from_file, a, true, text) == 1, "--strict: %s", text);
+    }
+}
+
 TEST_MAIN(
+    TEST_ENTRY(textures_render_as_their_mean_colour),
     TEST_ENTRY(each_kind_renders_as_the_scene_written_by_hand),
     TEST_ENTRY(each_dropped_file_feature_warns_and_strict_refuses),
     TEST_ENTRY(every_material_extension_is_named),

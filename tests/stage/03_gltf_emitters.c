@@ -9,6 +9,10 @@
  *    (8, 4, 2) does: the floor's mean agrees within 2% (both estimates
  *    are noisy: 256 shadow rays per light, or 16 paths of 16 from 06 on), and
  *    the camera sees exactly that radiance on it.
+ *  - The same square cut into 100,352 triangles (2,048 before stage 05's
+ *    BVH) lights the floor the same,
+ *    and a shading point sends no more shadow rays than to one light: the
+ *    triangles are picked (picker.c), not visited one by one.
  *  - One-sided unless doubleSided: seen from above, the square is black;
  *    with doubleSided it shows its radiance.
  *  - scenes/cornell_blocks.gltf, the library's scene written as glTF
@@ -17,6 +21,7 @@
  * The floor is black-free and the light black as a surface, so no light is
  * reflected twice: global illumination (07) changes nothing expected.
  */
+#include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
@@ -27,26 +32,38 @@
 #define HALF 0.3
 #define HEIGHT 1.5
 
-/* The square x, z in [-HALF, HALF] at y = HEIGHT, wound clockwise seen
- * from above so that its front (glTF's counter-clockwise side) faces
- * down. */
+/* The square x, z in [-HALF, HALF] at y = HEIGHT, cut into cells x cells
+ * squares of two triangles each, wound clockwise seen from above so that
+ * its front (glTF's counter-clockwise side) faces down. */
 static const char *
-write_lamp(const char *name, bool double_sided)
+write_lamp(const char *name, bool double_sided, int cells)
 {
     struct meshgen_mesh m = {0};
-    if (!meshgen_alloc(&m, 4, 2, false)) {
+    size_t side = (size_t)cells + 1;
+    if (!meshgen_alloc(&m, side * side, 2 * (size_t)cells * (size_t)cells, false)) {
         CHECK(false);
         return NULL;
     }
-    static const double corners[4][3] = {
-        {-HALF, HEIGHT, -HALF},
-        {HALF, HEIGHT, -HALF},
-        {HALF, HEIGHT, HALF},
-        {-HALF, HEIGHT, HALF},
-    };
-    static const unsigned tris[6] = {0, 1, 2, 0, 2, 3};
-    memcpy(m.positions, corners, sizeof corners);
-    memcpy(m.indices, tris, sizeof tris);
+    for (size_t j = 0; j < side; j++) {
+        for (size_t i = 0; i < side; i++) {
+            double *v = &m.positions[3 * (j * side + i)];
+            v[0] = -HALF + 2 * HALF * (double)i / cells;
+            v[1] = HEIGHT;
+            v[2] = -HALF + 2 * HALF * (double)j / cells;
+        }
+    }
+    unsigned *t = m.indices;
+    for (size_t j = 0; j < (size_t)cells; j++) {
+        for (size_t i = 0; i < (size_t)cells; i++) {
+            unsigned v00 = (unsigned)(j * side + i);
+            unsigned v10 = v00 + 1;
+            unsigned v01 = v00 + (unsigned)side;
+            unsigned v11 = v01 + 1;
+            unsigned two[6] = {v00, v10, v11, v00, v11, v01};
+            memcpy(t, two, sizeof two);
+            t += 6;
+        }
+    }
     char material[256];
     snprintf(
         material,
@@ -90,19 +107,30 @@ brightest_pixel(const struct image *img)
     return at;
 }
 
+/* Shadow rays per light at a shading point in render(). */
+static int
+shadow_samples(void)
+{
+    return strcmp(STAGE_NAME, "06_supersample") >= 0 ? 16 : 256;
+}
+
 static bool
-render(const char *scene, struct image *out)
+render(const char *scene, struct image *out, const char **stats)
 {
     const char *const args[] = {"-s", "16", "--shadow-samples", "16", NULL};
     const char *const one[] = {"--shadow-samples", "256", NULL};
     bool samples = strcmp(STAGE_NAME, "06_supersample") >= 0;
-    return stagecheck_render(scene, samples ? args : one, out, NULL);
+    return stagecheck_render(scene, samples ? args : one, out, stats);
 }
 
-TEST(emissive_square_lights_like_the_area_light)
+/* The floor lit by a lamp of cells x cells squares (2 cells^2 emitting
+ * triangles) against the `area_light` of the same rectangle and radiance;
+ * the stats of the lamp's render into *stats. */
+static void
+check_lamp_lights_like_the_area_light(int cells, const char **stats)
 {
     REQUIRE_GLTF();
-    if (!write_lamp("lamp", false)) {
+    if (!write_lamp("lamp", false, cells)) {
         return;
     }
     const char *mesh = stagecheck_scene("mesh.scene", SIDE_CAMERA FLOOR "mesh file lamp.glb\n");
@@ -116,7 +144,7 @@ TEST(emissive_square_lights_like_the_area_light)
         2 * HALF);
     struct image a = {0};
     struct image b = {0};
-    if (!mesh || !rect || !render(mesh, &a) || !render(rect, &b)) {
+    if (!mesh || !rect || !render(mesh, &a, stats) || !render(rect, &b, NULL)) {
         CHECK(false);
         image_free(&a);
         return;
@@ -124,7 +152,12 @@ TEST(emissive_square_lights_like_the_area_light)
     for (int c = 0; c < 3; c++) {
         double ma = mean(&a, c);
         double mb = mean(&b, c);
-        printf("channel %d: emissive mesh %.6g, area light %.6g\n", c, ma, mb);
+        printf(
+            "%d triangles, channel %d: emissive mesh %.6g, area light %.6g\n",
+            2 * cells * cells,
+            c,
+            ma,
+            mb);
         CHECK_MSG(fabs(ma - mb) < 0.02 * mb, "channel %d: %g vs %g", c, ma, mb);
     }
     /* The light's radiance where the camera sees it. */
@@ -136,20 +169,50 @@ TEST(emissive_square_lights_like_the_area_light)
     image_free(&b);
 }
 
+TEST(emissive_square_lights_like_the_area_light)
+{
+    check_lamp_lights_like_the_area_light(1, NULL);
+}
+
+/* 100,352 emitting triangles (a glTF car's lamps have 88,837): the shadow
+ * rays of a shading point go to one of them, picked (picker.c), so a
+ * vertex costs what one light costs whatever their number, and the floor
+ * is lit as by the one rectangle they tile.  Before stage 05 every ray
+ * tests every triangle (no BVH: a minute for this test), so stages 03-04
+ * have 2,048 of them: the shadow rays' count is the picker's all the same. */
+TEST(many_emitting_triangles_cost_what_one_light_costs)
+{
+    const char *stats = NULL;
+    check_lamp_lights_like_the_area_light(atoi(STAGE_NAME) >= 5 ? 224 : 32, &stats);
+    if (!stats) {
+        return;
+    }
+    double shadow = stagecheck_stat(stats, "rays_shadow");
+    double vertices =
+        stagecheck_stat(stats, "rays_camera") + stagecheck_stat(stats, "rays_secondary");
+    printf("%.0f shadow rays from %.0f rays' hits\n", shadow, vertices);
+    CHECK_MSG(
+        shadow <= shadow_samples() * vertices,
+        "%.0f shadow rays for %.0f rays: more than %d a hit",
+        shadow,
+        vertices,
+        shadow_samples());
+}
+
 /* The camera above the light, looking down at its back. */
 #define TOP_CAMERA "camera origin 0 3 0 target 0 0 0 up 0 0 -1 fov 10\nimage width 8 height 8\n"
 
 TEST(one_sided_unless_double_sided)
 {
     REQUIRE_GLTF();
-    if (!write_lamp("one", false) || !write_lamp("two", true)) {
+    if (!write_lamp("one", false, 1) || !write_lamp("two", true, 1)) {
         return;
     }
     const char *one = stagecheck_scene("one.scene", TOP_CAMERA FLOOR "mesh file one.glb\n");
     const char *two = stagecheck_scene("two.scene", TOP_CAMERA FLOOR "mesh file two.glb\n");
     struct image a = {0};
     struct image b = {0};
-    if (!one || !two || !render(one, &a) || !render(two, &b)) {
+    if (!one || !two || !render(one, &a, NULL) || !render(two, &b, NULL)) {
         CHECK(false);
         image_free(&a);
         return;
@@ -192,5 +255,6 @@ TEST(library_scene_written_as_gltf_renders_strict)
 
 TEST_MAIN(
     TEST_ENTRY(emissive_square_lights_like_the_area_light),
+    TEST_ENTRY(many_emitting_triangles_cost_what_one_light_costs),
     TEST_ENTRY(one_sided_unless_double_sided),
     TEST_ENTRY(library_scene_written_as_gltf_renders_strict))
