@@ -5,6 +5,7 @@
 #define LIGHT_H
 
 #include "geometry.h"
+#include "light_picker.h"
 #include "rng.h"
 #include "scene.h"
 #include "stats.h"
@@ -15,20 +16,10 @@
  * light is behind the surface.  Occlusion is the caller's business. */
 vec3 point_irradiance(const struct hit *h, vec3 from, vec3 intensity);
 
-/* The area lights as the shadow rays see them (picker.c): each of own[0..n_own)
- * (`area_light` statements) on its own, and the emitting triangles (a glTF
- * mesh's: thousands) as one light, of which each shading point picks one
- * by the cumulative shares cdf[0..n) (NULL: no emitting triangle). */
-struct light_picker {
-    int *own;
-    int n_own;
-    double *cdf;
-    int n;
-};
-
 /* How area lights are sampled: `samples` shadow rays per light, or, when
  * adaptive[0] > 0, adaptive[0] probe rays and adaptive[1] more only where
- * the probes disagree (a penumbra); picker NULL: every area light on its own. */
+ * the probes disagree (a penumbra); the emitting triangles picked by picker
+ * (light_picker.h; NULL: every area light on its own). */
 struct shadow_sampling {
     int samples;
     int adaptive[2];
@@ -86,13 +77,5 @@ vec3 direct_irradiance(
     const struct shadow_sampling *sampling,
     struct rng *rng,
     struct stats *st);
-
-/* picker.c: the picker of the scene's lights (false: out of memory); the
- * light u in [0,1) picks; the probability that `light` is picked (1 for a
- * light sampled on its own, or without a picker). */
-bool light_picker_build(const struct scene *s, struct light_picker *p, struct diag *err);
-void light_picker_free(struct light_picker *p);
-int light_pick(const struct light_picker *p, real u);
-real light_pick_probability(const struct scene *s, const struct light_picker *p, int light);
 
 #endif /* LIGHT_H */

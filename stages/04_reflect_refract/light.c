@@ -330,11 +330,11 @@ direct_irradiance(
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     if (picker && picker->cdf) {
-        /* The emitting triangles: one, picked, stands for all (picker.c). */
+        /* The emitting triangles: one, picked, stands for all (light_picker.h). */
         int i = light_pick(picker, rng_uniform(rng));
         struct emitter light = {.area = &s->area_lights[i]};
         inspect_light(st, TRACE_AREA_LIGHT, i);
-        real p = light_pick_probability(s, picker, i);
+        real p = (real)light_pick_probability(s, picker, i);
         e = vec3_add(e, vec3_scale(light_irradiance(w, h, &light, sampling, rng, st), 1 / p));
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {

@@ -112,7 +112,7 @@ main(int argc, char **argv)
     renderer.world = world_make(&run.scene);
     struct light_picker picker;
     struct diag err;
-    if (!light_picker_build(&run.scene, &picker, &err)) {
+    if (!light_picker_build(&run.scene, light_weight_area, &picker, &err)) {
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
     renderer.shadow.picker = &picker;

@@ -152,7 +152,7 @@ main(int argc, char **argv)
     renderer.scene = &run.scene;
     renderer.world = world_make(&run.scene);
     struct light_picker picker;
-    if (!light_picker_build(&run.scene, &picker, &err)) {
+    if (!light_picker_build(&run.scene, light_weight_area, &picker, &err)) {
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
     renderer.shadow.picker = &picker;

@@ -215,7 +215,7 @@ light_sample_irradiance(
      * MIS weighs it with the pick's probability (direct_irradiance divides by it). */
     real pdf = dist2 / cos_light_area;
     int number = (int)(light - w->scene->area_lights);
-    real pick = light_pick_probability(w->scene, sampling->picker, number);
+    real pick = (real)light_pick_probability(w->scene, sampling->picker, number);
     real weight = mis_shadow_weight(sampling, pick * pdf, cos_surface);
     vec3 l = vec3_scale(light->radiance, cos_surface * weight / pdf);
     vec3 e = vec3_mul(through, l);
@@ -331,14 +331,14 @@ direct_irradiance(
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     if (picker && picker->cdf) {
-        /* The emitting triangles: one, picked, stands for all (picker.c). */
+        /* The emitting triangles: one, picked, stands for all (light_picker.h). */
         real u;
         int group = DRAW_LIGHT + s->n_area_lights + s->n_sphere_lights;
         sampler_2d(sampling->id, sampling->depth, group, rng, &u, &u);
         int i = light_pick(picker, u);
         struct emitter light = {.area = &s->area_lights[i]};
         inspect_light(st, TRACE_AREA_LIGHT, i);
-        real p = light_pick_probability(s, picker, i);
+        real p = (real)light_pick_probability(s, picker, i);
         e = vec3_add(e, vec3_scale(light_irradiance(w, h, &light, sampling, rng, st), 1 / p));
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {

@@ -236,8 +236,9 @@ main(int argc, char **argv)
     /* MIS refines the fixed shadow rays (not the adaptive ones). */
     bool fixed = renderer.nee && renderer.shadow.adaptive[0] == 0;
     renderer.shadow.mis = renderer.shadow.mis && fixed;
+    light_weight_fn weight = renderer.pick_lights ? light_weight_power : light_weight_area;
     struct light_picker picker;
-    if (!light_picker_build(&run.scene, renderer.pick_lights, &picker, &err)) {
+    if (!light_picker_build(&run.scene, weight, &picker, &err)) {
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
     renderer.shadow.picker = &picker;

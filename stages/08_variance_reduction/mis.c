@@ -29,7 +29,7 @@ light_pdf(const struct scene *s, const struct shadow_sampling *sampling, int lig
         return sin2_max < 1 ? (1 + sqrt(1 - sin2_max)) / (2 * PI * sin2_max) : 0;
     }
     const struct area_light *area = &s->area_lights[light];
-    real pick = light_pick_probability(s, sampling->picker, light);
+    real pick = (real)light_pick_probability(s, sampling->picker, light);
     vec3 d = vec3_sub(y, x);
     real dist2 = vec3_length2(d);
     real cos_light = fabs(vec3_dot(area_light_normal(area), d)) / sqrt(dist2);

@@ -8,7 +8,7 @@
  * car's emissive lamps arrive from Blender) over a floor.  Stages 01-02
  * light the floor from each triangle (a shadow ray to each at each shaded
  * point); from 03 on, a shading point's shadow rays go to one triangle,
- * picked (picker.c), so the test asks for the most of them, 65,536 a
+ * picked (light_picker.h), so the test asks for the most of them, 65,536 a
  * point.  Either way a pixel costs milliseconds and a 16x16 tile seconds:
  * before the check per pixel, SIGTERM took 23 s (stage 03) to 56 s (stage
  * 07) to end its render.  The sphere has 20,480 triangles from stage 05

@@ -12,7 +12,7 @@
  *  - The same square cut into 100,352 triangles (2,048 before stage 05's
  *    BVH) lights the floor the same,
  *    and a shading point sends no more shadow rays than to one light: the
- *    triangles are picked (picker.c), not visited one by one.
+ *    triangles are picked (light_picker.h), not visited one by one.
  *  - One-sided unless doubleSided: seen from above, the square is black;
  *    with doubleSided it shows its radiance.
  *  - scenes/cornell_blocks.gltf, the library's scene written as glTF
@@ -175,7 +175,7 @@ TEST(emissive_square_lights_like_the_area_light)
 }
 
 /* 100,352 emitting triangles (a glTF car's lamps have 88,837): the shadow
- * rays of a shading point go to one of them, picked (picker.c), so a
+ * rays of a shading point go to one of them, picked (light_picker.h), so a
  * vertex costs what one light costs whatever their number, and the floor
  * is lit as by the one rectangle they tile.  Before stage 05 every ray
  * tests every triangle (no BVH: a minute for this test), so stages 03-04

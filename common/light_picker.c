@@ -1,24 +1,24 @@
 /*
- * picker.c - the light picker.  An emissive glTF material makes each of its
- * mesh's triangles a light, thousands of them; shadow rays to every one at
- * every shading point would cost in proportion to their number.  So the
- * emitting triangles are one light: a shading point sends its shadow rays
- * to one triangle i, picked with probability p_i, and divides what they
- * bring by p_i.  The expected value is the sum over all the triangles
- * (unbiased); the cost, one binary search.  p_i is in proportion to the
- * triangle's area, so a point drawn this way is uniform over the whole
- * emitting surface (Shirley, Wang and Zimmerman, "Monte Carlo Techniques
- * for Direct Lighting Calculations", 1996; stage 08 picks by power).
+ * light_picker.c - the emitting triangles as one light (light_picker.h).
  */
-#include "light.h"
+#include "light_picker.h"
 
+#include <float.h>
+#include <math.h>
 #include <stdlib.h>
 
-/* A light's share of the picks: a triangle's area; 0 for a light sampled on its own. */
+/* A light's weight, finite: an overflow (a vast bright triangle) counts as the largest double. */
 static double
-light_weight(const struct area_light *light)
+finite_weight(light_weight_fn weight, const struct area_light *light)
 {
-    return light->triangle ? (double)area_light_area(light) : 0;
+    double w = weight(light);
+    return w > DBL_MAX ? DBL_MAX : w;
+}
+
+double
+light_weight_area(const struct area_light *light)
+{
+    return (double)area_light_area(light);
 }
 
 void
@@ -30,7 +30,11 @@ light_picker_free(struct light_picker *p)
 }
 
 bool
-light_picker_build(const struct scene *s, struct light_picker *p, struct diag *err)
+light_picker_build(
+    const struct scene *s,
+    light_weight_fn weight,
+    struct light_picker *p,
+    struct diag *err)
 {
     int n = s->n_area_lights;
     *p = (struct light_picker){.n = n};
@@ -44,14 +48,17 @@ light_picker_build(const struct scene *s, struct light_picker *p, struct diag *e
     /* Weights over the largest: a sum of at most n terms <= 1 cannot overflow. */
     double largest = 0;
     for (int i = 0; i < n; i++) {
-        largest = fmax(largest, light_weight(&s->area_lights[i]));
+        const struct area_light *l = &s->area_lights[i];
+        largest = l->triangle ? fmax(largest, finite_weight(weight, l)) : largest;
     }
     double total = 0;
     for (int i = 0; i < n; i++) {
-        if (!s->area_lights[i].triangle) {
+        const struct area_light *l = &s->area_lights[i];
+        if (!l->triangle) {
             p->own[p->n_own++] = i;
+        } else if (largest > 0) {
+            total += finite_weight(weight, l) / largest;
         }
-        total += largest > 0 ? light_weight(&s->area_lights[i]) / largest : 0;
         p->cdf[i] = total;
     }
     for (int i = 0; i < n; i++) {
@@ -66,9 +73,9 @@ light_picker_build(const struct scene *s, struct light_picker *p, struct diag *e
 }
 
 int
-light_pick(const struct light_picker *p, real u)
+light_pick(const struct light_picker *p, double u)
 {
-    /* The first bin ending past u (binary search; a light on its own has an empty one). */
+    /* The first bin ending past u (binary search). */
     int lo = 0;
     int hi = p->n - 1;
     while (lo < hi) {
@@ -82,11 +89,11 @@ light_pick(const struct light_picker *p, real u)
     return lo;
 }
 
-real
+double
 light_pick_probability(const struct scene *s, const struct light_picker *p, int light)
 {
     if (!p || !p->cdf || !s->area_lights[light].triangle) {
         return 1;
     }
-    return (real)(p->cdf[light] - (light > 0 ? p->cdf[light - 1] : 0));
+    return p->cdf[light] - (light > 0 ? p->cdf[light - 1] : 0);
 }
