@@ -6,8 +6,8 @@
 # For each scene, the stage with its defaults (the Sobol sampler, MIS, the
 # light picker, roulette threshold 0.4, no tree on small scenes) and with each of its
 # refinements turned back to stage 07's way: the independent sampler
-# (--sampler independent), no MIS (--no-mis), shadow rays to every emitting
-# triangle (--no-light-pick), roulette's threshold 1 (--rr-threshold 1),
+# (--sampler independent), no MIS (--no-mis), emitting triangles picked by
+# area, not power (--no-light-pick), roulette's threshold 1 (--rr-threshold 1),
 # the tree on every scene (--brute-force-max 0), and all at once (stage
 # 07's path tracer): spp x relMSE
 # against Mitsuba's converged reference (a constant for an unbiased

@@ -189,7 +189,7 @@ TEST(duck_renders_from_the_file_alone)
         strstr(
             text,
             "warning: Duck.glb: material 'blinn3-fx': baseColorTexture not modelled; "
-            "using baseColorFactor (1, 1, 1)"),
+            "using its mean (0.915, 0.601, 0.0604)"),
         "%s",
         text);
     struct image img = {0};
@@ -198,10 +198,19 @@ TEST(duck_renders_from_the_file_alone)
     /* 40 wide, the camera's aspect ratio 1.5: 27 high; the duck is lit. */
     CHECK(img.width == 40 && img.height == 27);
     double brightest = 0;
+    size_t at = 0;
     for (size_t i = 0; i < 3 * (size_t)img.width * (size_t)img.height; i++) {
+        at = img.rgb[i] > brightest ? i - i % 3 : at;
         brightest = img.rgb[i] > brightest ? img.rgb[i] : brightest;
     }
     CHECK_MSG(brightest > 0.1, "the duck is dark: %g", brightest);
+    /* Yellow, its texture's mean, not white: red over blue as 0.915 to 0.0604. */
+    CHECK_MSG(
+        img.rgb[at] > 10 * img.rgb[at + 2],
+        "not yellow: %g %g %g",
+        img.rgb[at],
+        img.rgb[at + 1],
+        img.rgb[at + 2]);
     image_free(&img);
 }
 
