@@ -2,9 +2,9 @@
  * light_picker.h - the emitting triangles of a scene as one light.  An
  * emissive glTF material makes each of its mesh's triangles a light,
  * thousands of them (a car's lamps: 88,837); shadow rays to every one at
- * every shading point would cost in proportion to their number.  Instead a
- * shading point sends its shadow rays to one triangle i, picked with
- * probability p_i, and divides what they bring by p_i: the expected value
+ * every shading point would cost in proportion to their number.  Instead
+ * each shadow ray goes to one triangle i, picked with probability p_i, and
+ * what it brings is divided by p_i: the expected value
  * is the sum over all the triangles (unbiased), the cost one binary search
  * (Shirley, Wang and Zimmerman, "Monte Carlo Techniques for Direct Lighting
  * Calculations", 1996).  Stages 03-07 pick in proportion to area (a pick

@@ -303,6 +303,32 @@ light_irradiance(
 
 /* END LAB */
 
+/* The emitting triangles as one light (light_picker.h): each of its n shadow
+ * rays goes to a triangle of its own, picked (the k-th pick stratified in
+ * [k/n, (k+1)/n)), its sample divided by the pick's probability; adaptive
+ * sampling takes one pick for all its probes. */
+static vec3
+picked_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct shadow_sampling *sampling,
+    struct rng *rng,
+    struct stats *st)
+{
+    struct shadow_sampling one = *sampling;
+    int n = sampling->adaptive[0] > 0 ? 1 : sampling->samples;
+    one.samples = 1;
+    vec3 sum = vec3_splat(0);
+    for (int k = 0; k < n; k++) {
+        int i = light_pick(sampling->picker, ((real)k + rng_uniform(rng)) / (real)n);
+        struct emitter light = {.area = &w->scene->area_lights[i]};
+        inspect_light(st, TRACE_AREA_LIGHT, i);
+        real p = (real)light_pick_probability(w->scene, sampling->picker, i);
+        sum = vec3_add(sum, vec3_scale(light_irradiance(w, h, &light, &one, rng, st), 1 / p));
+    }
+    return vec3_scale(sum, 1 / (real)n);
+}
+
 vec3
 direct_irradiance(
     const struct world *w,
@@ -330,12 +356,7 @@ direct_irradiance(
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     if (picker && picker->cdf) {
-        /* The emitting triangles: one, picked, stands for all (light_picker.h). */
-        int i = light_pick(picker, rng_uniform(rng));
-        struct emitter light = {.area = &s->area_lights[i]};
-        inspect_light(st, TRACE_AREA_LIGHT, i);
-        real p = (real)light_pick_probability(s, picker, i);
-        e = vec3_add(e, vec3_scale(light_irradiance(w, h, &light, sampling, rng, st), 1 / p));
+        e = vec3_add(e, picked_irradiance(w, h, sampling, rng, st));
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
         struct emitter light = {.sphere = &s->sphere_lights[i]};

@@ -300,6 +300,42 @@ light_irradiance(
 
 /* END LAB */
 
+/* The emitting triangles as one light (light_picker.h): each of its n shadow
+ * rays goes to a triangle of its own, picked (the k-th pick stratified in
+ * [k/n, (k+1)/n), or the k-th of n Sobol points), its sample divided by
+ * the pick's probability; adaptive sampling takes one pick for all its
+ * probes.  MIS counts all n rays (`picked`). */
+static vec3
+picked_irradiance(
+    const struct world *w,
+    const struct hit *h,
+    const struct shadow_sampling *sampling,
+    struct rng *rng,
+    struct stats *st)
+{
+    struct shadow_sampling one = *sampling;
+    int n = sampling->adaptive[0] > 0 ? 1 : sampling->samples;
+    one.samples = 1;
+    one.picked = n;
+    int group = DRAW_LIGHT + w->scene->n_area_lights + w->scene->n_sphere_lights;
+    vec3 sum = vec3_splat(0);
+    for (int k = 0; k < n; k++) {
+        real u;
+        one.id.index = sampling->id.index * (uint32_t)n + (uint32_t)k;
+        if (sampling->id.kind == SAMPLER_SOBOL) {
+            sampler_2d(one.id, sampling->depth, group, rng, &u, &u);
+        } else {
+            u = ((real)k + rng_uniform(rng)) / (real)n;
+        }
+        int i = light_pick(sampling->picker, u);
+        struct emitter light = {.area = &w->scene->area_lights[i]};
+        inspect_light(st, TRACE_AREA_LIGHT, i);
+        real p = (real)light_pick_probability(w->scene, sampling->picker, i);
+        sum = vec3_add(sum, vec3_scale(light_irradiance(w, h, &light, &one, rng, st), 1 / p));
+    }
+    return vec3_scale(sum, 1 / (real)n);
+}
+
 vec3
 direct_irradiance(
     const struct world *w,
@@ -331,15 +367,7 @@ direct_irradiance(
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     if (picker && picker->cdf) {
-        /* The emitting triangles: one, picked, stands for all (light_picker.h). */
-        real u;
-        int group = DRAW_LIGHT + s->n_area_lights + s->n_sphere_lights;
-        sampler_2d(sampling->id, sampling->depth, group, rng, &u, &u);
-        int i = light_pick(picker, u);
-        struct emitter light = {.area = &s->area_lights[i]};
-        inspect_light(st, TRACE_AREA_LIGHT, i);
-        real p = (real)light_pick_probability(s, picker, i);
-        e = vec3_add(e, vec3_scale(light_irradiance(w, h, &light, sampling, rng, st), 1 / p));
+        e = vec3_add(e, picked_irradiance(w, h, sampling, rng, st));
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
         struct emitter light = {.sphere = &s->sphere_lights[i]};

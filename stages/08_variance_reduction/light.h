@@ -29,6 +29,7 @@ struct shadow_sampling {
     struct sample_id id;
     int depth;
     bool mis;
+    int picked; /* > 0: a ray of `picked` to picked triangles (MIS weighs by them) */
 };
 
 /* The extra statistics counter: shading points that took the penumbra path. */

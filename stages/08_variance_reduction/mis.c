@@ -39,7 +39,7 @@ light_pdf(const struct scene *s, const struct shadow_sampling *sampling, int lig
 real
 mis_shadow_weight(const struct shadow_sampling *sampling, real pdf_light, real cos_surface)
 {
-    real n = (real)sampling->samples;
+    real n = (real)(sampling->picked > 0 ? sampling->picked : sampling->samples);
     return sampling->mis ? power_heuristic(n * pdf_light, cos_surface * INV_PI) : 1;
 }
 

@@ -7,9 +7,9 @@
  * The heavy scene: a sphere of 1,280 emitting triangles (a glTF file, as
  * a car's emissive lamps arrive from Blender) over a floor.  Stages 01-02
  * light the floor from each triangle (a shadow ray to each at each shaded
- * point, every one tested against every triangle: no BVH); from 03 on, a
- * shading point's shadow rays go to one triangle, picked
- * (light_picker.h), so the test asks for the most of them, 65,536 a
+ * point, every one tested against every triangle: no BVH); from 03 on,
+ * each shadow ray goes to one triangle, picked (light_picker.h), so the
+ * test asks for the most shadow rays a shading point may have, 65,536 a
  * point.  Either way a pixel costs milliseconds (a fifth of a second
  * where a lab's handout traverses by brute force) and a 16x16 tile
  * seconds: before the check per pixel, SIGTERM took 23 s (stage 03) to

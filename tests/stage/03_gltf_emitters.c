@@ -179,8 +179,8 @@ TEST(emissive_square_lights_like_the_area_light)
     check_lamp_lights_like_the_area_light(1, shadow_samples(), NULL);
 }
 
-/* 100,352 emitting triangles (a glTF car's lamps have 88,837): the shadow
- * rays of a shading point go to one of them, picked (light_picker.h), so a
+/* 100,352 emitting triangles (a glTF car's lamps have 88,837): each shadow
+ * ray of a shading point goes to one of them, picked (light_picker.h), so a
  * vertex costs what one light costs whatever their number, and the floor
  * is lit as by the one rectangle they tile.  Before stage 05 every ray
  * tests every triangle (no BVH: a minute for this test), so stages 03-04
