@@ -94,6 +94,7 @@ image_size(const std::vector<unsigned char> &b, long *w, long *h)
     return false;
 }
 
+#ifndef TINYGLTF_NO_STB_IMAGE
 // An sRGB value in [0, 1] as linear (IEC 61966-2-1).
 static double
 srgb_to_linear(double v)
@@ -131,6 +132,8 @@ mean_colour(const tinygltf::Image &img, double mean[3], double *glow)
     }
     *glow = (double)glowing / (double)texels;
 }
+
+#endif
 
 // The mean colour of texture `index`'s image into mean and *glow; false
 // with *why (a clause: "its image ...") when it cannot be had.
@@ -172,6 +175,8 @@ texture_mean(
         return false;
     }
 #ifdef TINYGLTF_NO_STB_IMAGE
+    (void)mean;
+    (void)glow;
     *why = "this build decodes no image";
     return false;
 #else
