@@ -190,6 +190,12 @@ farm-render: all
 diffs:
 	@tests/lab/make-diffs.sh
 
+# The SHA-256 of every stage's image of every scene, rendered small
+# (tests/tools/image-hashes.sh): a change that must move no pixel runs it
+# before (OUT=file) and after (COMPARE=file).
+image-hashes: all
+	@tests/tools/image-hashes.sh $(if $(OUT),--out "$(OUT)") $(if $(COMPARE),--compare "$(COMPARE)")
+
 branches:
 	@if [ -z "$(OUT)" ]; then echo "usage: make branches OUT=path [FORCE=1]" >&2; exit 2; fi
 	@tests/lab/make-branches.sh $(if $(filter 1,$(FORCE)),--force) "$(OUT)"
@@ -242,6 +248,7 @@ help:
 	'make grade-class SUBMISSIONS=dir   grade every submission: a CSV and an HTML summary (SCHEDULER=slurm: a job array)' \
 	'make farm-render SCENE=f SPP=N TASKS=N   one render split over N Slurm tasks by seed, merged' \
 	'make diffs            docs/diffs/*.diff and the diff table of docs/README.md' \
+	'make image-hashes     every stage'"'"'s image of every scene, hashed (OUT=file, then COMPARE=file)' \
 	'make branches OUT=dir the stages as a git repository, one commit per stage (FORCE=1 replaces)' \
 	'make check-labs       every check of every lab handout' \
 	'make grade-cost       what make grade costs in each lab (processor s), idle and loaded' \
@@ -252,4 +259,4 @@ help:
 	'Knobs, with any target: REAL=float (single precision, in build/float/: make REAL=float test),' \
 	'WERROR=1 (warnings are errors), OPENEXR=0|1, TINYGLTF=0|1, CFLAGS=... (common/config.mk)'
 
-.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate calibrate-compare calibrate-functions test-seeds unseen docs-images clean lab grade autograder grade-class farm-render diffs branches check-labs grade-cost reference-masks help $(STAGES)
+.PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate calibrate-compare calibrate-functions test-seeds unseen docs-images clean lab grade autograder grade-class farm-render diffs image-hashes branches check-labs grade-cost reference-masks help $(STAGES)
