@@ -27,7 +27,9 @@
 #           what a paired student's bias there looks like; found when
 #           paired says "biased"
 # A set's grade is a false alarm when a test or a page fails.  Prints one
-# Markdown row a lab: sets, false alarms (tests, pages, the grade) with the
+# Markdown row a lab: sets, the TEST()s that failed at their first seed (the
+# second seed's work: of these, those that failed again are the tests'
+# false alarms), false alarms (tests, pages, the grade) with the
 # grade's rate and Wilson 95% interval, the 2% square found, and the
 # processor seconds.  The bug catalogue (tests/lab/bugs/: each bug fails a
 # test named for its function, so scores below 100%) is make test's part
@@ -78,23 +80,25 @@ run_stage_test() {
 
 # run_tests STAGE K OUT - the statistical programs of the lab's grade at
 # set K's first seed, a failing TEST() again at its second (lablib.sh,
-# second_seed, as the grade counts it); "1" into OUT when one fails at
-# both, else "0".
+# second_seed, as the grade counts it); into OUT "1" when one fails at
+# both, else "0", and the number of TEST()s that failed at the first seed.
 run_tests() {
     rt_alarm=0
+    rt_first=0
     for rt_src in $(cat "$work/$1.programs"); do
         rt_name=$(basename "$rt_src" .c)
         rt_bin=$root/build/tests/$1/$rt_name
         PATHCHECK_SEED=$((1000000 + 10000 * $2)) run_stage_test "$1" "$rt_bin" "$work/$1.log"
         grep -Eq '^[0-9]+ passed, [0-9]+ failed' "$work/$1.log" || die "$rt_name crashed on $1 at set $2"
-        for rt_test in $(test_statuses "$rt_src" "$work/$1.log" - |
-            second_seed "$rt_src" $((5000000 + 10000 * $2)) "$work/$1" run_stage_test "$1" "$rt_bin" |
-            awk '$2 == "FAIL" { print $1 }'); do
+        test_statuses "$rt_src" "$work/$1.log" - >"$work/$1.statuses"
+        rt_first=$((rt_first + $(grep -c ' FAIL$' "$work/$1.statuses" || :)))
+        for rt_test in $(second_seed "$rt_src" $((5000000 + 10000 * $2)) "$work/$1" run_stage_test "$1" "$rt_bin" \
+            <"$work/$1.statuses" | awk '$2 == "FAIL" { print $1 }'); do
             rt_alarm=1
             echo "$1 set $2: $rt_name/$rt_test failed at both seeds" >&2
         done
     done
-    echo "$rt_alarm" >"$3"
+    echo "$rt_alarm $rt_first" >"$3"
 }
 
 # run_pages NN STAGE K OUT SQUARES - each paired page at set K's seed
@@ -142,15 +146,17 @@ measure_lab() {
     done
     : >"$work/$1.squares"
     ml_tests=0
+    ml_first=0
     ml_pages=0
     ml_grade=0
     ml_k=1
     while [ "$ml_k" -le "$sets" ]; do
         run_tests "$ml_stage" "$ml_k" "$work/$1.t"
         run_pages "$1" "$ml_stage" "$ml_k" "$work/$1.p" "$work/$1.squares"
-        ml_t=$(cat "$work/$1.t")
+        read -r ml_t ml_f <"$work/$1.t"
         ml_p=$(cat "$work/$1.p")
         ml_tests=$((ml_tests + ml_t))
+        ml_first=$((ml_first + ml_f))
         ml_pages=$((ml_pages + ml_p))
         [ "$ml_t$ml_p" = 00 ] || ml_grade=$((ml_grade + 1))
         ml_k=$((ml_k + 1))
@@ -165,10 +171,10 @@ measure_lab() {
     else
         ml_square="no paired page"
     fi
-    awk -v stage="$1" -v n="$sets" -v progs="$ml_n" -v t="$ml_tests" -v p="$ml_pages" -v g="$ml_grade" \
-        -v rate="$2" -v lo="$3" -v hi="$4" -v square="$ml_square" 'BEGIN {
-        printf "| %s | %d | %d | %d | %d | %d (%.1f%%, %.1f%%-%.1f%%) | %s |",
-            stage, progs, n, t, p, g, 100 * rate, 100 * lo, 100 * hi, square }' >"$work/$ml_stage.row"
+    awk -v stage="$1" -v n="$sets" -v progs="$ml_n" -v f="$ml_first" -v t="$ml_tests" -v p="$ml_pages" \
+        -v g="$ml_grade" -v rate="$2" -v lo="$3" -v hi="$4" -v square="$ml_square" 'BEGIN {
+        printf "| %s | %d | %d | %d | %d | %d | %d (%.1f%%, %.1f%%-%.1f%%) | %s |",
+            stage, progs, n, f, t, p, g, 100 * rate, 100 * lo, 100 * hi, square }' >"$work/$ml_stage.row"
 }
 
 plain_make -C "$root" all >"$work/build.log" 2>&1 || die "the project does not build: $(tail -n 5 "$work/build.log")"
@@ -199,8 +205,8 @@ wait
 [ ! -f "$work/failed" ] || die "$(cat "$work/failed" "$work/alarms" | tail -n 5)"
 
 {
-    echo "| lab | statistical programs | sets | tests failed at both seeds | paired pages biased | grade's false alarms (rate, Wilson 95%) | a 2% 32x32 square found | processor s |"
-    echo "|---|--:|--:|--:|--:|---|---|--:|"
+    echo "| lab | statistical programs | sets | tests failed at the first seed | tests failed at both seeds | paired pages biased | grade's false alarms (rate, Wilson 95%) | a 2% 32x32 square found | processor s |"
+    echo "|---|--:|--:|--:|--:|--:|---|---|--:|"
     for nn in $labs; do
         stage=$(resolve_stage "$root" "$nn")
         secs=$(awk '{ for (i = 1; i <= 2; i++) { split($i, p, "m"); sub(/s$/, "", p[2]); t += 60 * p[1] + p[2] } }
@@ -214,8 +220,8 @@ echo "($sets sets a lab, $(($(date +%s) - start)) s on the clock, $(date -u +%Y-
 
 if [ "$quick" -eq 1 ]; then
     awk -F'|' 'NR > 2 {
-        split($8, sq, " ")
-        if ($7 !~ /^ 0 / || ($8 !~ /no paired page/ && sq[1] != sq[3])) bad = 1
+        split($9, sq, " ")
+        if ($8 !~ /^ 0 / || ($9 !~ /no paired page/ && sq[1] != sq[3])) bad = 1
     } END { exit bad }' "$work/table" ||
         die "--quick: correct work failed a set's grade, or a planted square was missed (the table above)"
 else
