@@ -75,6 +75,11 @@ light_picker_build(
 int
 light_pick(const struct light_picker *p, double u)
 {
+    /* A stratified u = (k + v) / n may round up to 1 (in float, about once
+     * in a million picks): it stands for the last bin, as u just below 1. */
+    if (!(u < 1)) {
+        u = nextafter(1.0, 0.0);
+    }
     /* The first bin ending past u (binary search). */
     int lo = 0;
     int hi = p->n - 1;

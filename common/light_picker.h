@@ -46,7 +46,8 @@ bool light_picker_build(
     struct diag *err);
 void light_picker_free(struct light_picker *p);
 
-/* The area light u in [0,1) picks (p->cdf must not be NULL). */
+/* The area light u in [0,1] picks (p->cdf must not be NULL); u = 1 picks
+ * as u just below 1 does. */
 int light_pick(const struct light_picker *p, double u);
 
 /* The probability that area light `light` is picked: 1 for a light sampled
