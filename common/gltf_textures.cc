@@ -11,6 +11,10 @@
 
 #include <cmath>
 
+extern "C" {
+#include "image.h"  // linear_from_srgb: the sRGB transfer function the encoders use
+}
+
 // 8192 x 8192: the largest textures in common use; four bytes a texel at 8
 // bits, 512 MiB at 16 bits, decoded one at a time.
 #define GLTF_TEXTURE_MAX_PIXELS (8192L * 8192L)
@@ -95,13 +99,6 @@ image_size(const std::vector<unsigned char> &b, long *w, long *h)
 }
 
 #ifndef TINYGLTF_NO_STB_IMAGE
-// An sRGB value in [0, 1] as linear (IEC 61966-2-1).
-static double
-srgb_to_linear(double v)
-{
-    return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-}
-
 // The mean linear colour of a decoded RGBA image of `bits` 8 or 16, and the
 // share of its texels that glow.
 static void
@@ -112,7 +109,7 @@ mean_colour(const tinygltf::Image &img, double mean[3], double *glow)
     double top = wide ? 65535 : 255;
     std::vector<double> linear(wide ? 0 : 256);
     for (size_t v = 0; v < linear.size(); v++) {
-        linear[v] = srgb_to_linear((double)v / 255);
+        linear[v] = linear_from_srgb((float)v / 255.0f);
     }
     double sum[3] = {0, 0, 0};
     size_t glowing = 0;
@@ -122,7 +119,7 @@ mean_colour(const tinygltf::Image &img, double mean[3], double *glow)
         for (int c = 0; c < 3; c++) {
             size_t at = 4 * t + (size_t)c;
             unsigned v = wide ? (unsigned)p[2 * at] | (unsigned)p[2 * at + 1] << 8 : p[at];
-            sum[c] += wide ? srgb_to_linear(v / top) : linear[v];
+            sum[c] += wide ? linear_from_srgb((float)(v / top)) : linear[v];
             brightest = v > brightest ? v : brightest;
         }
         glowing += brightest * 255 > GLOW_SRGB8 * (unsigned)top;

@@ -1781,14 +1781,6 @@ TEST(base_colour_and_emissive_textures_are_their_mean)
     gltf_free(&m);
 }
 
-static bool
-write_bytes(const char *path, const void *bytes, size_t n)
-{
-    FILE *f = fopen(path, "wb");
-    bool ok = f && fwrite(bytes, 1, n, f) == n;
-    return (f ? fclose(f) == 0 : false) && ok;
-}
-
 /* Bytes of a PNG's signature and header chunk stating width x height, and
  * nothing after it: the size is read, the image is never decoded. */
 static bool
@@ -1801,7 +1793,7 @@ write_png_header(const char *name, uint32_t width, uint32_t height)
         b[20 + i] = (unsigned char)(height >> (24 - 8 * i));
     }
     b[24] = 8; /* bit depth; colour type 0 and the rest 0; no CRC check is reached */
-    return write_bytes(test_tmp_path(name), b, sizeof b);
+    return test_write_bytes(test_tmp_path(name), b, sizeof b);
 }
 
 TEST(textures_that_cannot_be_averaged_say_why)
@@ -1811,8 +1803,8 @@ TEST(textures_that_cannot_be_averaged_say_why)
     static const unsigned char jpeg[] =
         {0xff, 0xd8, 0xff, 0xe0, 0, 4, 'J', 'F', 0xff, 0xc0, 0, 11, 8, 0xff, 0xff, 0xff, 0xff, 3};
     CHECK(write_png_header("huge.png", 100000, 100000));
-    CHECK(write_bytes(test_tmp_path("huge.jpg"), jpeg, sizeof jpeg));
-    CHECK(write_bytes(test_tmp_path("odd.gif"), "GIF89a", 6));
+    CHECK(test_write_bytes(test_tmp_path("huge.jpg"), jpeg, sizeof jpeg));
+    CHECK(test_write_bytes(test_tmp_path("odd.gif"), "GIF89a", 6));
     CHECK(write_png_header("broken.png", 4, 4));
 
     static const struct {

@@ -617,8 +617,9 @@ test_json_number(const char *path, const char *key, double *out)
 double
 test_srgb8_linear(int k)
 {
-    double v = k / 255.0;
-    return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
+    /* In float, as the project's transfer function is (image.h). */
+    float v = (float)k / 255.0f;
+    return v <= 0.04045f ? v / 12.92f : (float)pow((v + 0.055) / 1.055, 2.4);
 }
 
 bool

@@ -143,8 +143,8 @@ bool test_render_image(const char *scene, const char *const args[], struct image
  * false when the file or the key is missing. */
 bool test_json_number(const char *path, const char *key, double *out);
 
-/* The linear value of the 8-bit sRGB code k (IEC 61966-2-1), computed
- * apart from the glTF loader's. */
+/* The linear value of the 8-bit sRGB code k (IEC 61966-2-1), written
+ * here from the standard, in float as image.h's linear_from_srgb is. */
 double test_srgb8_linear(int k);
 
 /* A 4 x 2 PNG texture, NAME in the temp dir, whose first `lit` texels have
