@@ -159,13 +159,9 @@ if [ -n "$save_controls" ]; then
     cp "$work/controls" "$save_controls" || die "cannot write $save_controls"
 fi
 
-# No program of an earlier build may stand in for one that does not build
-# now: the test programs and the render go; their objects stay, so that
-# only what the stage's changes touch compiles again.
-for src in $(handout_tests "$dir"); do
-    rm -f "$dir/build/tests/$stage/$(basename "$src" .c)"
-done
-rm -f "$dir/build/$stage/render"
+# The build compiles only what the stage's changes touch; a program (or
+# the render) that does not build now is removed (handout_build), so no
+# earlier one stands in for it.
 build=ok
 programs=all
 [ "$lab_only" -eq 0 ] || programs=lab

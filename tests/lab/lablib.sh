@@ -170,20 +170,34 @@ handout_build() {
     hb_which=$3
     shift 3
     hb_stage=$(handout_stage "$hb_dir") || die "$hb_dir: no stage in stages/"
+    # (make prints absolute paths, from its physical working directory.)
+    hb_abs=$(cd "$hb_dir" && pwd -P)
     hb_progs=
     for hb_src in $(handout_tests "$hb_dir"); do
         if [ "$hb_which" = lab ] && [ "$(test_from "$hb_src")" != "${hb_stage%%_*}" ]; then
             continue
         fi
-        hb_progs="$hb_progs $hb_dir/build/tests/$hb_stage/$(basename "$hb_src" .c)"
+        hb_progs="$hb_progs $hb_abs/build/tests/$hb_stage/$(basename "$hb_src" .c)"
     done
     hb_status=0
-    {
-        lab_make -C "$hb_dir" "$@" all &&
-            if [ -n "$hb_progs" ]; then
-                lab_make -k -C "$hb_dir/tests" "$@" STAGE="$hb_stage" $hb_progs
-            fi
-    } >"$hb_log" 2>&1 || hb_status=$?
+    # No program of an earlier build may stand in for one that does not
+    # build now: where a compile fails, make -k leaves the old program in
+    # place.  When the stage does not build, the render and every program
+    # (they link the stage's objects) go; else make -n names the programs
+    # still out of date, and those go.  The rest stand: relinking all 45 of
+    # lab 08 cost 4.5 processor seconds a grade.
+    if ! lab_make -C "$hb_dir" "$@" all >"$hb_log" 2>&1; then
+        rm -f "$hb_abs/build/$hb_stage/render" $hb_progs
+        return 2
+    fi
+    [ -n "$hb_progs" ] || return 0
+    lab_make -k -C "$hb_dir/tests" "$@" STAGE="$hb_stage" $hb_progs >>"$hb_log" 2>&1 || hb_status=$?
+    for hb_p in $(lab_make -n -k -C "$hb_dir/tests" "$@" STAGE="$hb_stage" $hb_progs 2>/dev/null |
+        awk '{ for (i = 1; i < NF; i++) if ($i == "-o") print $(i + 1) }'); do
+        case "$hb_progs " in
+            *" $hb_p "*) rm -f "$hb_p" ;;
+        esac
+    done
     return $hb_status
 }
 
@@ -435,6 +449,20 @@ paired_page_name() {
 }
 PAIRED_SPP=16
 PAIRED_SEED=1
+# The second look: a paired page that calls the student's render biased at
+# PAIRED_SEED judges it again at PAIRED_SECOND_SEED, against the
+# solution's render of that seed (make-lab.sh ships both), and fails only
+# when it finds the bias there too.  A student who draws as the solution
+# does repeats the bias at any seed, so a real bias fails both looks; a
+# correct student who draws otherwise (two independent renders, judged at
+# level q) fails both with probability q^2 (docs/calibration/README.md:
+# that is what bounds the grade's false alarms).  Labs 01-02 draw no
+# random numbers: their renders are the same at every seed, one look.
+PAIRED_SECOND_SEED=2
+paired_second_look() {
+    case $1 in 01 | 02) return 1 ;; esac
+    return 0
+}
 
 # paired_render RENDER NN SCENE_FILE SEED OUT [OPTION...] - RENDER's image
 # of SCENE_FILE as lab NN's paired page renders it (paired_options, 256 x

@@ -150,6 +150,17 @@ write_solution_renders() {
             die "the solution's render of $ws_scene failed"
         echo "    render -W 256 -H 256 $ws_options scenes/$ws_scene.scene" >>"$tmp/tests/reference/solution/README"
     done
+    # The second look's renders (lablib.sh's PAIRED_SECOND_SEED).
+    if paired_second_look "$nn"; then
+        mkdir -p "$tmp/tests/reference/solution/seed$PAIRED_SECOND_SEED"
+        for ws_scene in $ws_scenes; do
+            paired_render "$ws_render" "$nn" "$root/scenes/$ws_scene.scene" "$PAIRED_SECOND_SEED" \
+                "$tmp/tests/reference/solution/seed$PAIRED_SECOND_SEED/$ws_scene.pfm" >/dev/null ||
+                die "the solution's render of $ws_scene at seed $PAIRED_SECOND_SEED failed"
+        done
+        echo "and seed$PAIRED_SECOND_SEED/: the same with --seed $PAIRED_SECOND_SEED, for a second look where the first finds a bias." \
+            >>"$tmp/tests/reference/solution/README"
+    fi
     {
         echo "make grade renders your stage the same way and compares the two pixel by pixel"
         echo "(LAB.md, \"Reading the report pages\")."

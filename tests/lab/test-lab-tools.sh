@@ -643,6 +643,59 @@ test_grade_pages() {
         "$LAB_DIR/grade-pages.sh" --spp x "$root" 06_supersample "$T/pages/none"
 }
 
+# The paired page's second look (grade-pages.sh, lablib.sh's
+# PAIRED_SECOND_SEED): a handout whose render copies a prepared image for
+# each seed, against the solution's renders of seeds 1 and 2 (two seeds of
+# lab 06's stage).  A bias at both seeds fails, naming both; a bias at the
+# first seed only passes, saying the first look was chance; a handout
+# without the second seed's render keeps the first look's verdict.
+test_second_look() {
+    root=$(cd "$LAB_DIR/../.." && pwd)
+    sl=$T/second-look
+    mkdir -p "$sl/build/06_supersample" "$sl/build/tools" "$sl/scenes" "$sl/tests/reference/solution/seed2" "$sl/img"
+    cp "$root/build/tools/paired" "$sl/build/tools/" || { fail grade-pages/second-look "no paired tool (make first)"; return; }
+    cp "$root/scenes/cornell_diffuse_point.scene" "$sl/scenes/"
+    printf 'tools:\n\t@:\n' >"$sl/tests/Makefile"
+    for sl_seed in 1 2; do
+        "$root/build/06_supersample/render" -q -W 256 -H 256 --spp 4 --seed "$sl_seed" -o "$sl/img/sol$sl_seed.pfm" \
+            "$root/scenes/cornell_diffuse_point.scene" >/dev/null 2>&1 ||
+            { fail grade-pages/second-look "no render of lab 06 (make first)"; return; }
+        "$root/build/tools/imgedit" --scale 1.05 "$sl/img/sol$sl_seed.pfm" "$sl/img/biased$sl_seed.pfm" >/dev/null
+    done
+    cp "$sl/img/sol1.pfm" "$sl/tests/reference/solution/cornell_diffuse_point.pfm"
+    cp "$sl/img/sol2.pfm" "$sl/tests/reference/solution/seed2/cornell_diffuse_point.pfm"
+    # The student's "render": the image named in $sl/student.SEED for --seed SEED.
+    cat >"$sl/build/06_supersample/render" <<'SCRIPT'
+#!/bin/sh
+seed= out=
+while [ $# -gt 0 ]; do
+    case $1 in --seed) seed=$2; shift ;; -o) out=$2; shift ;; esac
+    shift
+done
+cp "$(cat "$(dirname "$0")/../../student.$seed")" "$out"
+SCRIPT
+    chmod +x "$sl/build/06_supersample/render"
+    # sl_case NAME IMAGE1 IMAGE2 WANT_RECORD WANT_LINE
+    sl_case() {
+        echo "$sl/img/$2.pfm" >"$sl/student.1"
+        echo "$sl/img/$3.pfm" >"$sl/student.2"
+        : >"$T/sl-records"
+        "$LAB_DIR/grade-pages.sh" --records "$T/sl-records" --paired-only cornell_diffuse_point_direct \
+            "$sl" 06_supersample "$T/sl-pages" >"$T/sl-out" 2>&1 || :
+        if grep -q "^cornell_diffuse_point_direct $4" "$T/sl-records" && grep -q "$5" "$T/sl-out"; then
+            ok "grade-pages/second-look-$1"
+        else
+            fail "grade-pages/second-look-$1" "$(cat "$T/sl-records" "$T/sl-out")"
+        fi
+    }
+    sl_case bias-at-both biased1 biased2 "FAIL biased at both seeds (1 and 2)" "second look (--seed 2): .*biased"
+    sl_case chance-at-the-first biased1 sol2 ok "consistent at the second seed: the first look's blocks were chance"
+    sl_case correct sol1 biased2 ok "paired with the solution's render"
+    if grep -q "second look" "$T/sl-out"; then fail grade-pages/second-look-only-after-a-bias "$(cat "$T/sl-out")"; else ok grade-pages/second-look-only-after-a-bias; fi
+    rm -r "$sl/tests/reference/solution/seed2"
+    sl_case without-its-render biased1 sol2 FAIL "biased"
+}
+
 # spp_for_power (lablib.sh) on compare's own power lines: two renders of 1
 # spp of lab 06, which need many times their samples to find 2% (the spp
 # those ask for, a whole number of passes of 16, at most MAX), and
@@ -1019,6 +1072,7 @@ test_grade_score
 test_controls
 test_second_seed
 test_grade_pages
+test_second_look
 test_spp_for_power
 test_docs_images
 test_help
