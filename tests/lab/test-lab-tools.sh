@@ -643,6 +643,44 @@ test_grade_pages() {
         "$LAB_DIR/grade-pages.sh" --spp x "$root" 06_supersample "$T/pages/none"
 }
 
+# handout_build (lablib.sh) leaves no program of an earlier build standing
+# in for one that does not build now, and relinks none that is up to
+# date: a handout of two C "programs" and a "render", built, then broken
+# in one program's source, then in the stage.
+test_handout_build() {
+    hb=$T/hb
+    mkdir -p "$hb/stages/01_x" "$hb/tests/stage"
+    printf 'int main(void) { return 0; }\n' >"$hb/stages/01_x/render.c"
+    printf 'int main(void) { return 0; }\n' >"$hb/tests/stage/01_one.c"
+    printf 'int main(void) { return 0; }\n' >"$hb/tests/stage/01_two.c"
+    printf 'all: build/01_x/render\nbuild/01_x/render: stages/01_x/render.c\n\t@mkdir -p $(@D)\n\t$(CC) -o $@ $<\n' \
+        >"$hb/Makefile"
+    printf '%s/build/tests/01_x/%%: stage/%%.c\n\t@mkdir -p $(@D)\n\t$(CC) -o $@ $<\n' "$(cd "$hb" && pwd -P)" \
+        >"$hb/tests/Makefile"
+    hb_progs() { ls "$hb/build/01_x/render" "$hb/build/tests/01_x/01_one" "$hb/build/tests/01_x/01_two" 2>/dev/null | wc -l; }
+    if handout_build "$hb" "$T/hb.log" all && [ "$(hb_progs)" -eq 3 ]; then
+        touch -d '2000-01-01' "$hb/build/tests/01_x/01_two"
+        touch -d '1999-01-01' "$hb/tests/stage/01_two.c"
+        echo 'broken' >>"$hb/tests/stage/01_one.c"
+        touch -d '2001-01-01' "$hb/build/tests/01_x/01_two" # up to date: not relinked
+        if ! handout_build "$hb" "$T/hb.log" all && [ ! -e "$hb/build/tests/01_x/01_one" ] &&
+            [ "$(stat -c %Y "$hb/build/tests/01_x/01_two")" = "$(date -d '2001-01-01' +%s)" ] &&
+            [ -e "$hb/build/01_x/render" ]; then
+            ok handout-build/a-program-that-does-not-build-goes
+        else
+            fail handout-build/a-program-that-does-not-build-goes "$(ls -l "$hb/build/tests/01_x")" "$(cat "$T/hb.log")"
+        fi
+        echo 'broken' >>"$hb/stages/01_x/render.c"
+        if ! handout_build "$hb" "$T/hb.log" all && [ "$(hb_progs)" -eq 0 ]; then
+            ok handout-build/a-stage-that-does-not-build-takes-every-program
+        else
+            fail handout-build/a-stage-that-does-not-build-takes-every-program "$(ls -lR "$hb/build")"
+        fi
+    else
+        fail handout-build/builds "$(cat "$T/hb.log")"
+    fi
+}
+
 # The paired page's second look (grade-pages.sh, lablib.sh's
 # PAIRED_SECOND_SEED): a handout whose render copies a prepared image for
 # each seed, against the solution's renders of seeds 1 and 2 (two seeds of
@@ -1072,6 +1110,7 @@ test_grade_score
 test_controls
 test_second_seed
 test_grade_pages
+test_handout_build
 test_second_look
 test_spp_for_power
 test_docs_images
