@@ -20,18 +20,23 @@
 #   pages   each paired page (lablib.sh's paired_scenes): the stage's render
 #           with the page's options at seed 1000 + k, judged by paired
 #           against the solution's render (seed 1) as make grade judges the
-#           student's; "biased" is a false alarm (labs 01-02 have no random
-#           numbers: the same image at every seed)
+#           student's, with its second look (where the page says biased, the
+#           render at 3000 + k against the solution's render of seed 2):
+#           "biased" at both is a false alarm (labs 01-02 have no random
+#           numbers: the same image at every seed, one look)
 #   square  the solution's own render with a 2% brighter 32x32 square at
 #           point k + 1 of Roberts' R2 sequence (lablib.sh's plant_rect):
 #           what a paired student's bias there looks like; found when
-#           paired says "biased"
+#           paired says "biased" at both looks (the square in the
+#           solution's render of seed 1, then of seed 2)
 # A set's grade is a false alarm when a test or a page fails.  Prints one
 # Markdown row a lab: sets, the TEST()s that failed at their first seed (the
 # second seed's work: of these, those that failed again are the tests'
-# false alarms), false alarms (tests, pages, the grade) with the
-# grade's rate and Wilson 95% interval, the 2% square found, and the
-# processor seconds.  The bug catalogue (tests/lab/bugs/: each bug fails a
+# false alarms), the pages biased at the first look and at both, the
+# grade's false alarms with their rate and Wilson 95% interval, the bound
+# on the rate that the first looks give ((Poisson 95% upper end of their
+# failures / sets)^2: a failure of the grade needs two independent ones),
+# the 2% square found, and the processor seconds.  The bug catalogue (tests/lab/bugs/: each bug fails a
 # test named for its function, so scores below 100%) is make test's part
 # `functions` (check-functions.sh), run last here with its count.
 # --sets N (default 100), --labs "03 07" (default: every lab), --quick:
@@ -101,31 +106,70 @@ run_tests() {
     echo "$rt_alarm $rt_first" >"$3"
 }
 
-# run_pages NN STAGE K OUT SQUARES - each paired page at set K's seed
-# ("1" into OUT when one says biased) and with the planted 2% square ("1"
-# a line into SQUARES when found, "0" when not).
+# judge STAGE IMAGE SOLUTION - paired's verdict on IMAGE against SOLUTION:
+# exit 0 consistent, 1 biased (anything else ends the run).
+judge() {
+    jd_status=0
+    "$tools/paired" "$2" "$3" >"$work/$1.paired" 2>&1 || jd_status=$?
+    [ "$jd_status" -le 1 ] || die "paired failed: $(cat "$work/$1.paired")"
+    return "$jd_status"
+}
+
+# run_pages NN STAGE K OUT SQUARES - each paired page at set K's seed,
+# with the grade's second look (lablib.sh's PAIRED_SECOND_SEED: where the
+# page says biased, the render at the second seed, 3000 + K here, against
+# the solution's render of that seed; biased only when both are): into OUT
+# "A F", A = 1 when a page says biased at both looks, F the pages that
+# said so at the first; and with the planted 2% square, judged the same
+# way (the square planted into both solution renders: a paired student's
+# bias repeats at every seed), "1" a line into SQUARES when found, "0"
+# when not.
 run_pages() {
     rp_alarm=0
+    rp_first=0
     for rp_scene in $(paired_scenes "$1"); do
         rp_solution=$work/$2.$rp_scene.solution.pfm
+        rp_solution2=$work/$2.$rp_scene.solution2.pfm
         paired_render "$root/build/$2/render" "$1" "$root/scenes/$rp_scene.scene" $((1000 + $3)) \
             "$work/$2.student.pfm" -t 1 >"$work/$2.render.log" ||
             die "$2 did not render $rp_scene: $(head -n 3 "$work/$2.render.log")"
-        rp_status=0
-        "$tools/paired" "$work/$2.student.pfm" "$rp_solution" >"$work/$2.paired" 2>&1 || rp_status=$?
-        [ "$rp_status" -le 1 ] || die "paired failed: $(cat "$work/$2.paired")"
-        if [ "$rp_status" -eq 1 ]; then
-            rp_alarm=1
-            echo "$2 set $3: the page of $rp_scene called correct work biased" >&2
+        if ! judge "$2" "$work/$2.student.pfm" "$rp_solution"; then
+            rp_first=$((rp_first + 1))
+            echo "$2 set $3: the page of $rp_scene called correct work biased at the first look" >&2
+            if [ -f "$rp_solution2" ]; then
+                paired_render "$root/build/$2/render" "$1" "$root/scenes/$rp_scene.scene" $((3000 + $3)) \
+                    "$work/$2.student.pfm" -t 1 >"$work/$2.render.log" ||
+                    die "$2 did not render $rp_scene: $(head -n 3 "$work/$2.render.log")"
+            fi
+            if [ ! -f "$rp_solution2" ] || ! judge "$2" "$work/$2.student.pfm" "$rp_solution2"; then
+                rp_alarm=1
+                echo "$2 set $3: the page of $rp_scene called correct work biased at both looks" >&2
+            fi
         fi
-        "$tools/imgedit" --scale 1.02 --rect "$(plant_rect "$3" 256)" "$rp_solution" "$work/$2.square.pfm" >/dev/null ||
+        rp_rect=$(plant_rect "$3" 256)
+        "$tools/imgedit" --scale 1.02 --rect "$rp_rect" "$rp_solution" "$work/$2.square.pfm" >/dev/null ||
             die "imgedit failed"
-        rp_status=0
-        "$tools/paired" "$work/$2.square.pfm" "$rp_solution" >"$work/$2.paired" 2>&1 || rp_status=$?
-        [ "$rp_status" -le 1 ] || die "paired failed: $(cat "$work/$2.paired")"
-        echo "$rp_status" >>"$5"
+        rp_found=0
+        if ! judge "$2" "$work/$2.square.pfm" "$rp_solution"; then
+            rp_found=1
+            if [ -f "$rp_solution2" ]; then
+                "$tools/imgedit" --scale 1.02 --rect "$rp_rect" "$rp_solution2" "$work/$2.square.pfm" >/dev/null ||
+                    die "imgedit failed"
+                judge "$2" "$work/$2.square.pfm" "$rp_solution2" && rp_found=0
+            fi
+        fi
+        echo "$rp_found" >>"$5"
     done
-    echo "$rp_alarm" >"$4"
+    echo "$rp_alarm $rp_first" >"$4"
+}
+
+# poisson_upper F - the one-sided 95% upper end of a Poisson mean from F
+# events (chi-square quantile: exact up to 10, Wilson-Hilferty beyond).
+poisson_upper() {
+    awk -v f="$1" 'BEGIN {
+        split("2.996 4.744 6.296 7.754 9.154 10.513 11.842 13.148 14.435 15.705 16.962", u, " ")
+        if (f <= 10) { print u[f + 1]; exit }
+        a = f + 1; print a * (1 - 1 / (9 * a) + 1.644854 / (3 * sqrt(a))) ^ 3 }'
 }
 
 # measure_lab NN - the sets of lab NN; its row into $work/NN.row.
@@ -143,21 +187,28 @@ measure_lab() {
         paired_render "$root/build/$ml_stage/render" "$1" "$root/scenes/$ml_scene.scene" "$PAIRED_SEED" \
             "$work/$ml_stage.$ml_scene.solution.pfm" -t 1 >/dev/null ||
             die "$ml_stage did not render $ml_scene"
+        if paired_second_look "$1"; then
+            paired_render "$root/build/$ml_stage/render" "$1" "$root/scenes/$ml_scene.scene" "$PAIRED_SECOND_SEED" \
+                "$work/$ml_stage.$ml_scene.solution2.pfm" -t 1 >/dev/null ||
+                die "$ml_stage did not render $ml_scene"
+        fi
     done
     : >"$work/$1.squares"
     ml_tests=0
     ml_first=0
     ml_pages=0
+    ml_pages_first=0
     ml_grade=0
     ml_k=1
     while [ "$ml_k" -le "$sets" ]; do
         run_tests "$ml_stage" "$ml_k" "$work/$1.t"
         run_pages "$1" "$ml_stage" "$ml_k" "$work/$1.p" "$work/$1.squares"
         read -r ml_t ml_f <"$work/$1.t"
-        ml_p=$(cat "$work/$1.p")
+        read -r ml_p ml_pf <"$work/$1.p"
         ml_tests=$((ml_tests + ml_t))
         ml_first=$((ml_first + ml_f))
         ml_pages=$((ml_pages + ml_p))
+        ml_pages_first=$((ml_pages_first + ml_pf))
         [ "$ml_t$ml_p" = 00 ] || ml_grade=$((ml_grade + 1))
         ml_k=$((ml_k + 1))
     done
@@ -171,10 +222,21 @@ measure_lab() {
     else
         ml_square="no paired page"
     fi
-    awk -v stage="$1" -v n="$sets" -v progs="$ml_n" -v f="$ml_first" -v t="$ml_tests" -v p="$ml_pages" \
-        -v g="$ml_grade" -v rate="$2" -v lo="$3" -v hi="$4" -v square="$ml_square" 'BEGIN {
-        printf "| %s | %d | %d | %d | %d | %d | %d (%.1f%%, %.1f%%-%.1f%%) | %s |",
-            stage, progs, n, f, t, p, g, 100 * rate, 100 * lo, 100 * hi, square }' >"$work/$ml_stage.row"
+    # The bound: a test or page fails the grade only by failing at two
+    # independent seeds, q^2 for one whose first look fails at q, so the
+    # grade's rate is at most sum q^2 <= (sum q)^2, and sum q, the first
+    # looks' failures a set, is at most Poisson's 95% upper end of their
+    # count over the sets.
+    ml_upper=$(poisson_upper $((ml_first + ml_pages_first)))
+    # A lab without random numbers (01-02) gives the same verdicts at every
+    # seed: no false alarm on correct work is possible.
+    [ "$ml_n" -gt 0 ] || paired_second_look "$1" || ml_upper=0
+    awk -v stage="$1" -v n="$sets" -v progs="$ml_n" -v f="$ml_first" -v t="$ml_tests" -v pf="$ml_pages_first" \
+        -v p="$ml_pages" -v g="$ml_grade" -v rate="$2" -v lo="$3" -v hi="$4" -v square="$ml_square" \
+        -v upper="$ml_upper" 'BEGIN {
+        b = (upper / n) ^ 2; if (b > 1) b = 1
+        printf "| %s | %d | %d | %d | %d | %d | %d | %d (%.1f%%, %.1f%%-%.1f%%) | %.2f%% | %s |",
+            stage, progs, n, f, t, pf, p, g, 100 * rate, 100 * lo, 100 * hi, 100 * b, square }' >"$work/$ml_stage.row"
 }
 
 plain_make -C "$root" all >"$work/build.log" 2>&1 || die "the project does not build: $(tail -n 5 "$work/build.log")"
@@ -205,8 +267,8 @@ wait
 [ ! -f "$work/failed" ] || die "$(cat "$work/failed" "$work/alarms" | tail -n 5)"
 
 {
-    echo "| lab | statistical programs | sets | tests failed at the first seed | tests failed at both seeds | paired pages biased | grade's false alarms (rate, Wilson 95%) | a 2% 32x32 square found | processor s |"
-    echo "|---|--:|--:|--:|--:|--:|---|---|--:|"
+    echo "| lab | statistical programs | sets | tests failed at the first seed | tests failed at both seeds | pages biased at the first look | pages biased at both | grade's false alarms (rate, Wilson 95%) | bound on the rate (95%) | a 2% 32x32 square found | processor s |"
+    echo "|---|--:|--:|--:|--:|--:|--:|---|--:|---|--:|"
     for nn in $labs; do
         stage=$(resolve_stage "$root" "$nn")
         secs=$(awk '{ for (i = 1; i <= 2; i++) { split($i, p, "m"); sub(/s$/, "", p[2]); t += 60 * p[1] + p[2] } }
@@ -220,8 +282,8 @@ echo "($sets sets a lab, $(($(date +%s) - start)) s on the clock, $(date -u +%Y-
 
 if [ "$quick" -eq 1 ]; then
     awk -F'|' 'NR > 2 {
-        split($9, sq, " ")
-        if ($8 !~ /^ 0 / || ($9 !~ /no paired page/ && sq[1] != sq[3])) bad = 1
+        split($11, sq, " ")
+        if ($9 !~ /^ 0 / || ($11 !~ /no paired page/ && sq[1] != sq[3])) bad = 1
     } END { exit bad }' "$work/table" ||
         die "--quick: correct work failed a set's grade, or a planted square was missed (the table above)"
 else
