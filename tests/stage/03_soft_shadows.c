@@ -3,10 +3,10 @@
  * stage's binary.
  *
  *  - One shadow ray per light (--shadow-samples 1) is an unbiased estimate:
- *    averaged over 64 seeds, a block of penumbra pixels agrees with 256
- *    rays within 3.4 standard errors (Welch's t, stattest.h; 3 for each of
- *    four blocks), in the penumbra across the light's edges and across its
- *    corners, where a point sampled with u and v not independent (u = v:
+ *    over a block of 16,384 penumbra pixels, one ray minus 32 rays, pixel
+ *    by pixel, has mean 0 within 3.4 standard errors (t, stattest.h; 3 for
+ *    each of four blocks), in the penumbra across the light's edges and
+ *    across its corners, where a point sampled with u and v not independent (u = v:
  *    the light's diagonal) sees the wrong part of the light.
  *  - The adaptive mode (--adaptive 16,128) spends half the shadow rays of
  *    --shadow-samples 144, reports its penumbra points, and its refinement
@@ -78,15 +78,23 @@ first_seed(void)
     return pathcheck_seed(1);
 }
 
-/* The mean of channel 0 over a whole render; NaN when it fails. */
-static double
-render_mean(const char *scene, const char *samples, uint64_t seed)
+/* The render of `scene` with `samples` shadow rays at the seed; false
+ * (and an empty image) when it fails. */
+static bool
+render_seeded(const char *scene, const char *samples, uint64_t seed, struct image *img)
 {
     char seed_text[32];
     snprintf(seed_text, sizeof seed_text, "%" PRIu64, seed);
     const char *const args[] = {"-s", "1", "--seed", seed_text, "--shadow-samples", samples, NULL};
+    return stagecheck_render(scene, args, img, NULL);
+}
+
+/* The mean of channel 0 over a whole render; NaN when it fails. */
+static double
+render_mean(const char *scene, const char *samples, uint64_t seed)
+{
     struct image img = {0};
-    if (!stagecheck_render(scene, args, &img, NULL)) {
+    if (!render_seeded(scene, samples, seed, &img)) {
         return NAN;
     }
     double mean = stagecheck_region_mean(&img, 0, 0, img.width, img.height, 0);
@@ -94,36 +102,48 @@ render_mean(const char *scene, const char *samples, uint64_t seed)
     return mean;
 }
 
-/* A block of 16x16 pixels 0.22 across, centred 0.83 from the axis in
- * direction `degrees` (from +x towards +z): mid-penumbra.  Its mean with
- * one shadow ray (64 seeds) against 256 rays (8 seeds): false when they
- * differ by more than noise explains. */
+/* A block 0.22 across, centred 0.83 from the axis in direction `degrees`
+ * (from +x towards +z): mid-penumbra, in 128x128 pixels.  Each pixel is
+ * its own random stream, so one render with one shadow ray gives 16,384
+ * independent one-ray estimates, and a render with 32 rays a low-noise
+ * estimate of the same pixels: their differences, pixel by pixel, have
+ * mean 0 when one ray is unbiased.  (The same 16,384 one-ray estimates as
+ * 64 renders of a 16x16 block, in 2 renders instead of 72.)  False when
+ * the mean difference is more than noise explains. */
 static bool
 one_ray_agrees_with_many(double degrees)
 {
     double angle = degrees * PI_D / 180;
     const char *scene =
-        penumbra_scene(0.83 * cos(angle), 0.83 * sin(angle), 2 * atan(0.11) * 180 / PI_D, 16);
-    struct stattest_welford one = {0};
-    struct stattest_welford many = {0};
-    for (uint64_t k = 0; k < 64; k++) {
-        stattest_welford_add(&one, render_mean(scene, "1", first_seed() + k));
+        penumbra_scene(0.83 * cos(angle), 0.83 * sin(angle), 2 * atan(0.11) * 180 / PI_D, 128);
+    struct image one = {0};
+    struct image many = {0};
+    bool rendered = render_seeded(scene, "1", first_seed(), &one)
+                    && render_seeded(scene, "32", first_seed() + 1000, &many);
+    CHECK(rendered);
+    if (!rendered) {
+        image_free(&one);
+        return false;
     }
-    for (uint64_t k = 1000; k < 1008; k++) {
-        stattest_welford_add(&many, render_mean(scene, "256", first_seed() + k));
+    struct stattest_welford diff = {0};
+    for (int p = 0; p < one.width * one.height; p++) {
+        stattest_welford_add(&diff, (double)one.rgb[3 * p] - (double)many.rgb[3 * p]);
     }
-    struct stattest_result t = stattest_t_test_welford_welch(&one, &many);
+    double many_mean = stagecheck_region_mean(&many, 0, 0, many.width, many.height, 0);
+    struct stattest_result t = stattest_t_test_welford_one_sample(&diff, 0);
     printf(
-        "%3.0f degrees: block mean: N=1 %.6g +- %.2g (64 seeds), N=256 %.6g +- %.2g (8 seeds): "
-        "t = %.3g\n",
+        "%3.0f degrees: block mean with 32 rays %.6g; one ray minus 32, pixel by pixel: %.3g +- %.2g "
+        "(%d pixels), t = %.3g\n",
         degrees,
-        one.mean,
-        sqrt(stattest_welford_var_of_mean(&one)),
-        many.mean,
-        sqrt(stattest_welford_var_of_mean(&many)),
+        many_mean,
+        diff.mean,
+        sqrt(stattest_welford_var_of_mean(&diff)),
+        one.width * one.height,
         t.t);
     /* In the penumbra, neither fully lit (about 0.036) nor black. */
-    CHECK(many.mean > 0.005 && many.mean < 0.03);
+    CHECK(many_mean > 0.005 && many_mean < 0.03);
+    image_free(&one);
+    image_free(&many);
     /* Four tests: 3.4 keeps the chance that any fails near one test's at 3. */
     return fabs(t.t) < 3.4;
 }
