@@ -163,7 +163,9 @@ fi
 # the render) that does not build now is removed (handout_build), so no
 # earlier one stands in for it.
 build=ok
+# The programs this grade runs: a default grade not the FULL=1-only ones.
 programs=all
+[ "$full" -eq 1 ] || programs=default
 [ "$lab_only" -eq 0 ] || programs=lab
 if ! handout_build "$dir" "$work/build.log" "$programs" -j"$jobs"; then
     if lab_make -C "$dir" -j"$jobs" all >/dev/null 2>&1; then

@@ -161,9 +161,10 @@ lab_make() {
     MAKEFLAGS= MAKELEVEL= MFLAGS= ${MAKE:-make} --no-print-directory REAL=double SANITIZE=0 "$@"
 }
 
-# handout_build DIR LOG all|lab [VAR=value...] - build a handout's stage
-# and its test programs, all or only the lab's own (make -k: as many as
-# compile).  Output goes to LOG; the status is make's.
+# handout_build DIR LOG all|default|lab [VAR=value...] - build a handout's
+# stage and its test programs: all, those a default grade runs (not the
+# FULL=1-only ones), or only the lab's own (make -k: as many as compile).
+# Output goes to LOG; the status is make's.
 handout_build() {
     hb_dir=$1
     hb_log=$2
@@ -175,6 +176,9 @@ handout_build() {
     hb_progs=
     for hb_src in $(handout_tests "$hb_dir"); do
         if [ "$hb_which" = lab ] && [ "$(test_from "$hb_src")" != "${hb_stage%%_*}" ]; then
+            continue
+        fi
+        if [ "$hb_which" = default ] && full_only "$hb_src"; then
             continue
         fi
         hb_progs="$hb_progs $hb_abs/build/tests/$hb_stage/$(basename "$hb_src" .c)"

@@ -670,6 +670,18 @@ test_handout_build() {
         else
             fail handout-build/a-program-that-does-not-build-goes "$(ls -l "$hb/build/tests/01_x")" "$(cat "$T/hb.log")"
         fi
+        # A default grade's build leaves out the FULL=1-only programs.
+        printf '/*\n * Grading: make grade FULL=1 only (slow)\n */\nint main(void) { return 0; }\n' \
+            >"$hb/tests/stage/01_slow.c"
+        handout_build "$hb" "$T/hb.log" default || :
+        hb_default=0
+        [ ! -e "$hb/build/tests/01_x/01_slow" ] || hb_default=1
+        handout_build "$hb" "$T/hb.log" all || :
+        if [ "$hb_default" -eq 0 ] && [ -e "$hb/build/tests/01_x/01_slow" ]; then
+            ok handout-build/a-default-grade-builds-no-full-only-program
+        else
+            fail handout-build/a-default-grade-builds-no-full-only-program "$(ls -l "$hb/build/tests/01_x")"
+        fi
         echo 'broken' >>"$hb/stages/01_x/render.c"
         if ! handout_build "$hb" "$T/hb.log" all && [ "$(hb_progs)" -eq 0 ]; then
             ok handout-build/a-stage-that-does-not-build-takes-every-program
