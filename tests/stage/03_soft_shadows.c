@@ -191,6 +191,7 @@ TEST(one_shadow_ray_is_unbiased_in_the_penumbra)
  *    draws a fixed number of shadow rays from stratified sequences, while
  *    the adaptive rays, whose count varies, keep the random stream. */
 #define ADAPTIVE_ARGS 11
+
 static void
 adaptive_test_options(const char **out, const char *seed, const char *option, const char *value)
 {
