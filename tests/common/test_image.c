@@ -1,5 +1,5 @@
 /*
- * test_image.c - unit tests of common/image.c (and image_exr.c): the sRGB
+ * test_image.c - unit tests of common/image/image.c (and image_exr.c): the sRGB
  * transfer function, the PNG checksums, the PNG, PPM, PFM and EXR writers,
  * the PFM reader, and image_write()'s temporary-file-and-rename scheme.
  *

@@ -1,6 +1,6 @@
 /*
- * test_trace.c - the pixel trace's recorder and writers (common/trace.c,
- * common/trace_write.c), without a stage:
+ * test_trace.c - the pixel trace's recorder and writers (common/inspect/trace.c,
+ * common/inspect/trace_write.c), without a stage:
  *   - render_pixel_traced gives the pixel the value render_image stores,
  *     bit for bit, NaN passes guarded alike, and records one pass estimate
  *     per pass;
