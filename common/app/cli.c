@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "aov.h"
+#include "cli_value.h"
 #include "gltf.h"
 #include "image.h"
 #include "scene.h"
@@ -91,155 +92,6 @@ static const struct shared_option shared_options[] = {
 
 #define N_SHARED ((int)(sizeof shared_options / sizeof shared_options[0]))
 
-static const char *
-skip_digits(const char *p, int *count)
-{
-    while (*p >= '0' && *p <= '9') {
-        p++;
-        ++*count;
-    }
-    return p;
-}
-
-/* The one syntax of every number on the command line: an optional sign,
- * decimal digits and, for a real, a fraction and an exponent.  No blanks,
- * no hexadecimal, no "inf" or "nan", which strtoll and strtod alone would
- * also take. */
-static bool
-is_decimal(const char *text, bool whole)
-{
-    const char *p = text + (*text == '+' || *text == '-');
-    int digits = 0;
-    p = skip_digits(p, &digits);
-    if (!whole && *p == '.') {
-        p = skip_digits(p + 1, &digits);
-    }
-    if (digits == 0) {
-        return false;
-    }
-    if (!whole && (*p == 'e' || *p == 'E')) {
-        p += 1 + (p[1] == '+' || p[1] == '-');
-        int exponent_digits = 0;
-        p = skip_digits(p, &exponent_digits);
-        if (exponent_digits == 0) {
-            return false;
-        }
-    }
-    return *p == '\0';
-}
-
-/* A whole number in [min, max]; the message gives the range. */
-static bool
-parse_whole(
-    const char *name,
-    const char *text,
-    long long min,
-    long long max,
-    long long *out,
-    struct diag *err)
-{
-    char *end;
-    errno = 0;
-    long long v = is_decimal(text, true) ? strtoll(text, &end, 10) : 0;
-    if (!is_decimal(text, true) || errno == ERANGE || v < min || v > max) {
-        diag_set(
-            err,
-            NULL,
-            0,
-            0,
-            "--%s expects a whole number in [%lld, %lld], got '%s'",
-            name,
-            min,
-            max,
-            text);
-        return false;
-    }
-    *out = v;
-    return true;
-}
-
-static bool
-parse_int_in(const char *name, const char *text, double min, double max, int *out, struct diag *err)
-{
-    long long v;
-    if (!parse_whole(name, text, (long long)min, (long long)max, &v, err)) {
-        return false;
-    }
-    *out = (int)v;
-    return true;
-}
-
-static bool
-parse_real_in(
-    const char *name,
-    const char *text,
-    double min,
-    double max,
-    real *out,
-    struct diag *err)
-{
-    errno = 0;
-    double v = is_decimal(text, false) ? strtod(text, NULL) : NAN;
-    if (!is_decimal(text, false) || errno == ERANGE || !isfinite(v) || v < min || v > max) {
-        diag_set(
-            err,
-            NULL,
-            0,
-            0,
-            "--%s expects a number in [%g, %g], got '%s'",
-            name,
-            min,
-            max,
-            text);
-        return false;
-    }
-    *out = (real)v;
-    return true;
-}
-
-static bool
-parse_pair(const struct option_spec *spec, const char *text, struct diag *err)
-{
-    int *pair = spec->dest;
-    const char *comma = strchr(text, ',');
-    char first[64];
-    size_t len = comma ? (size_t)(comma - text) : 0;
-    if (!comma || len >= sizeof first) {
-        diag_set(
-            err,
-            NULL,
-            0,
-            0,
-            "--%s expects %s (two whole numbers), got '%s'",
-            spec->name,
-            spec->arg,
-            text);
-        return false;
-    }
-    memcpy(first, text, len);
-    first[len] = '\0';
-    return parse_int_in(spec->name, first, spec->min, spec->max, &pair[0], err)
-           && parse_int_in(spec->name, comma + 1, spec->min, spec->max, &pair[1], err);
-}
-
-static bool
-parse_choice(const struct option_spec *spec, const char *text, struct diag *err)
-{
-    const char *word = spec->choices;
-    size_t len = strlen(text);
-    for (int index = 0; word && *word; index++) {
-        const char *bar = strchr(word, '|');
-        size_t wlen = bar ? (size_t)(bar - word) : strlen(word);
-        if (wlen == len && strncmp(word, text, len) == 0) {
-            *(int *)spec->dest = index;
-            return true;
-        }
-        word = bar ? bar + 1 : NULL;
-    }
-    diag_set(err, NULL, 0, 0, "--%s expects one of %s, got '%s'", spec->name, spec->choices, text);
-    return false;
-}
-
 static bool
 apply_extra(const struct option_spec *spec, const char *value, struct diag *err)
 {
@@ -249,13 +101,13 @@ apply_extra(const struct option_spec *spec, const char *value, struct diag *err)
         *(bool *)spec->dest = spec->kind == OPT_FLAG;
         return true;
     case OPT_INT:
-        return parse_int_in(spec->name, value, spec->min, spec->max, spec->dest, err);
+        return cli_parse_int(spec->name, value, spec->min, spec->max, spec->dest, err);
     case OPT_REAL:
-        return parse_real_in(spec->name, value, spec->min, spec->max, spec->dest, err);
+        return cli_parse_real(spec->name, value, spec->min, spec->max, spec->dest, err);
     case OPT_INT_PAIR:
-        return parse_pair(spec, value, err);
+        return cli_parse_pair(spec, value, err);
     case OPT_CHOICE:
-        return parse_choice(spec, value, err);
+        return cli_parse_choice(spec, value, err);
     }
     return false;
 }
@@ -284,15 +136,15 @@ apply_shared(
         opt->output = value;
         return true;
     case ID_WIDTH:
-        return parse_int_in(name, value, 1, 16384, &opt->width, err);
+        return cli_parse_int(name, value, 1, 16384, &opt->width, err);
     case ID_HEIGHT:
-        return parse_int_in(name, value, 1, 16384, &opt->height, err);
+        return cli_parse_int(name, value, 1, 16384, &opt->height, err);
     case ID_SPP:
-        return parse_int_in(name, value, 1, 1 << 24, &opt->spp, err);
+        return cli_parse_int(name, value, 1, 1 << 24, &opt->spp, err);
     case ID_THREADS:
-        return parse_int_in(name, value, 1, 1024, &opt->threads, err);
+        return cli_parse_int(name, value, 1, 1024, &opt->threads, err);
     case ID_SEED:
-        if (!parse_whole(name, value, 0, max_seed, &seed, err)) {
+        if (!cli_parse_whole(name, value, 0, max_seed, &seed, err)) {
             return false;
         }
         opt->seed = (uint64_t)seed;
@@ -310,12 +162,12 @@ apply_shared(
         opt->camera = value;
         return true;
     case ID_MAX_MEMORY:
-        return parse_int_in(name, value, 1, 1 << 30, &opt->max_memory_mib, err);
+        return cli_parse_int(name, value, 1, 1 << 30, &opt->max_memory_mib, err);
     case ID_AOV:
         return aov_parse_list(value, &opt->aov, err);
     case ID_PIXEL:
         opt->has_pixel = true;
-        return parse_pair(&pixel_spec, value, err);
+        return cli_parse_pair(&pixel_spec, value, err);
     case ID_TRACE:
         opt->trace_path = value;
         return true;

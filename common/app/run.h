@@ -65,6 +65,12 @@ bool run_parse(struct run *run, int argc, char **argv, const struct cli_stage *s
  * RENDER_FEATURES) lacks; under --strict that refuses the scene.  False:
  * main() returns run->status. */
 bool run_load_scene(struct run *run, unsigned modelled);
+/* The image's size: the scene's, or -W/-H's (one of them alone keeps the
+ * scene's aspect ratio). */
+void run_image_size(const struct scene *scene, const struct options *opt, int *width, int *height);
+/* False, with the message printed and run->status set, when an output of
+ * the run is one of these inputs (the same file by identity, not name). */
+bool run_check_identities(struct run *run, const struct named_file *inputs, int n_inputs);
 
 /* The job every stage starts from: the image size (the scene's, or -W/-H
  * keeping its aspect ratio), the threads, the seed, the progress bar, one

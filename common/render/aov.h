@@ -124,5 +124,8 @@ bool aov_render(
 /* The label of a surface point (exposed for tests). */
 enum aov_label
 aov_label_at(const struct aov_source *src, const struct scene *scene, const struct aov_hit *h);
+/* How far off a surface at p the passes start a ray: REL_OFFSET of p's
+ * magnitude (aov_label.c). */
+real aov_offset_at(vec3 p);
 
 #endif /* AOV_H */

@@ -2,8 +2,8 @@
 # layers.sh [LIBCOMMON] - common/ is layers: its folders (common/config.mk's
 # COMMON_LAYERS, in order: core image gltf scene inspect render app) each
 # use only themselves and the folders before them, no file calls or
-# includes back into itself through others, and nothing but the build files
-# sits at common/'s top.
+# includes back into itself through others, nothing but the build files
+# sits at common/'s top, and no file is over 450 lines.
 #
 #   calls     file A -> file B when A's object uses a symbol B's object
 #             defines (nm on LIBCOMMON, by default the newest
@@ -125,6 +125,17 @@ if [ -z "$top" ]; then
     count 0
 else
     echo "FAIL layers/top: files at common/'s top, outside its layers: $top"
+    count 1
+fi
+
+# No file of a layer over 450 lines: a file is read in one sitting.
+long=$(for d in $layers; do wc -l "$root/common/$d"/* | awk -v d="$d" '$2 != "total" && $1 > 450 {
+    n = split($2, p, "/"); printf "%s/%s (%d lines) ", d, p[n], $1 }'; done)
+if [ -z "$long" ]; then
+    echo "ok   layers/size: no file of common/'s layers over 450 lines"
+    count 0
+else
+    echo "FAIL layers/size: over 450 lines: $long"
     count 1
 fi
 
