@@ -85,7 +85,7 @@ feature_info(enum feature f)
 }
 
 int
-stage_number(const char *name)
+feature_table_stage_number(const char *name)
 {
     if (!name || name[0] < '0' || name[0] > '9' || name[1] < '0' || name[1] > '9') {
         return 0;
@@ -94,13 +94,13 @@ stage_number(const char *name)
 }
 
 const char *
-stage_name(int number)
+feature_table_stage_name(int number)
 {
     return number >= 1 && number <= STAGE_COUNT ? stage_names[number] : stage_names[0];
 }
 
 unsigned
-features_of_stage(int number)
+feature_table_of_stage(int number)
 {
     unsigned mask = 0;
     for (int f = 0; f < FEAT_COUNT; f++) {
@@ -112,7 +112,7 @@ features_of_stage(int number)
 }
 
 int
-features_unmodelled(
+feature_table_unmodelled(
     const struct scene *s,
     unsigned modelled,
     const char *stage,
@@ -120,7 +120,7 @@ features_unmodelled(
     int max)
 {
     int n = 0;
-    int here = stage_number(stage);
+    int here = feature_table_stage_number(stage);
     for (int f = 0; f < FEAT_COUNT && n < max; f++) {
         if (!(s->features & FEATURE_BIT(f)) || (modelled & FEATURE_BIT(f))) {
             continue;
@@ -136,7 +136,7 @@ features_unmodelled(
                 "%s: not modelled by %s (%s adds it); %s",
                 info->name,
                 stage,
-                stage_name(info->first_stage),
+                feature_table_stage_name(info->first_stage),
                 info->before);
         } else {
             diag_set(

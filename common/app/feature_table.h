@@ -27,15 +27,15 @@ struct feature_info {
 const struct feature_info *feature_info(enum feature f);
 
 /* "05_bvh" -> 5; 0 when the name does not start with a stage number. */
-int stage_number(const char *stage_name);
+int feature_table_stage_number(const char *feature_table_stage_name);
 
 /* 5 -> "05_bvh"; "?" outside 1..STAGE_COUNT. */
-const char *stage_name(int number);
+const char *feature_table_stage_name(int number);
 
 /* The features a stage models according to the table above. */
-unsigned features_of_stage(int number);
+unsigned feature_table_of_stage(int number);
 
-/* The most diagnostics features_unmodelled gives. */
+/* The most diagnostics feature_table_unmodelled gives. */
 #define UNMODELLED_MAX (FEAT_COUNT + SCENE_MAX_NOTES)
 
 /* One diagnostic per feature the scene uses and `modelled` lacks, located at
@@ -43,7 +43,7 @@ unsigned features_of_stage(int number);
  * models).  Fills at most max; returns the count.  Each says what is not
  * modelled, then, after its first "; ", what the stage does instead (under
  * --strict, which refuses the scene, that part is left out). */
-int features_unmodelled(
+int feature_table_unmodelled(
     const struct scene *s,
     unsigned modelled,
     const char *stage,

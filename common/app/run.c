@@ -42,7 +42,7 @@ run_check_identities(struct run *run, const struct named_file *inputs, int n_inp
 bool
 run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage)
 {
-    *run = (struct run){.stage = stage->name, .start = clock_seconds(), .status = EXIT_OK};
+    *run = (struct run){.stage = stage->name, .start = stats_clock_seconds(), .status = EXIT_OK};
     struct diag err;
     switch (cli_parse(argc, argv, &run->opt, stage, stdout, &err)) {
     case CLI_EXIT:
@@ -169,7 +169,7 @@ static int
 render_full(const struct render_job *job, struct image *image, struct render_result *result)
 {
     struct diag err;
-    if (!render_image(job, image, result, &err)) {
+    if (!driver_render_image(job, image, result, &err)) {
         diag_print(stderr, &err, "error");
         return EXIT_RESOURCES;
     }
@@ -241,7 +241,7 @@ render_traced(
     }
     float rgb[3];
     struct render_result result;
-    render_pixel_traced(job, px, py, trace, rgb, &result);
+    driver_render_pixel_traced(job, px, py, trace, rgb, &result);
     struct image image = {0};
     bool full = run->opt.trace_svg_path || run->opt.output;
     int status = EXIT_OK;
@@ -274,7 +274,7 @@ render_passes(struct run *run, const struct render_job *job, struct image passes
         return EXIT_USAGE;
     }
     bool interrupted;
-    double start = clock_seconds();
+    double start = stats_clock_seconds();
     if (!aov_render(&run->aov, &run->scene, run->opt.aov, job, passes, &interrupted, &err)) {
         if (interrupted) {
             fprintf(
@@ -285,7 +285,7 @@ render_passes(struct run *run, const struct render_job *job, struct image passes
         diag_print(stderr, &err, "error");
         return EXIT_RESOURCES;
     }
-    report_set(&run->rep, "seconds_aov", clock_seconds() - start, false);
+    stats_report_set(&run->rep, "seconds_aov", stats_clock_seconds() - start, false);
     return EXIT_OK;
 }
 

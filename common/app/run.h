@@ -44,7 +44,7 @@ struct run {
     char default_output[1024];
     struct named_file outputs[RUN_MAX_OUTPUTS]; /* every file the run writes */
     int n_outputs;
-    double start; /* clock_seconds() when the run began */
+    double start; /* stats_clock_seconds() when the run began */
     struct scene scene; /* loaded by run_load_scene */
     bool scene_loaded;
     struct report rep; /* what --stats and the summary report */

@@ -33,7 +33,7 @@ static bool
 report_unmodelled(const struct run *run, unsigned modelled)
 {
     struct diag notes[UNMODELLED_MAX];
-    int n = features_unmodelled(&run->scene, modelled, run->stage, notes, UNMODELLED_MAX);
+    int n = feature_table_unmodelled(&run->scene, modelled, run->stage, notes, UNMODELLED_MAX);
     for (int i = 0; i < n; i++) {
         print_unmodelled(&notes[i], run->opt.strict);
     }
@@ -81,13 +81,13 @@ check_memory(const struct run *run, struct diag *err)
     run_image_size(s, &run->opt, &job.width, &job.height);
     uint64_t primitives = (uint64_t)s->n_spheres + (uint64_t)s->n_quads + (uint64_t)s->n_triangles
                           + (uint64_t)s->n_area_lights;
-    uint64_t image = render_job_bytes(&job);
+    uint64_t image = driver_job_bytes(&job);
     /* --aov: an image per pass, and the driver's buffers of their job. */
     uint64_t pixels = (uint64_t)job.width * (uint64_t)job.height;
     for (int pass = 0; pass < AOV_COUNT; pass++) {
         image += run->opt.aov & (1u << pass) ? pixels * 3 * sizeof(float) : 0;
     }
-    image += run->opt.aov ? render_job_bytes(&job) : 0;
+    image += run->opt.aov ? driver_job_bytes(&job) : 0;
     uint64_t accel = primitives * ACCEL_BYTES_PER_PRIMITIVE;
     uint64_t total = scene_bytes(s) + accel + image;
     if (total <= memory_limit(run)) {
@@ -141,6 +141,6 @@ run_load_scene(struct run *run, unsigned modelled)
         run->status = EXIT_INPUT;
         return false;
     }
-    run->rep.seconds_load = clock_seconds() - run->start;
+    run->rep.seconds_load = stats_clock_seconds() - run->start;
     return true;
 }

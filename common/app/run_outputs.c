@@ -188,7 +188,7 @@ write_one(
     } else if (path == run->opt.trace_path) {
         trace_write_text(f, trace);
     } else {
-        report_write_json_to(f, &run->rep);
+        stats_report_write_json_to(f, &run->rep);
     }
     return true;
 }
@@ -227,8 +227,8 @@ run_write_outputs(
     const struct image *passes,
     const struct trace *trace)
 {
-    run->rep.peak_rss_bytes = peak_rss_bytes();
-    run->rep.seconds_total = clock_seconds() - run->start;
+    run->rep.peak_rss_bytes = stats_peak_rss_bytes();
+    run->rep.seconds_total = stats_clock_seconds() - run->start;
     struct atomic_file files[RUN_MAX_OUTPUTS];
     struct diag err;
     int n = 0;
@@ -253,7 +253,7 @@ run_write_outputs(
         return status;
     }
     if (!run->opt.quiet) {
-        report_print(stderr, &run->rep);
+        stats_report_print(stderr, &run->rep);
     }
     return write_stdout(run, image, trace);
 }

@@ -9,7 +9,7 @@
 #include "atomic_file.h"
 
 void
-report_set(struct report *r, const char *key, double value, bool integer)
+stats_report_set(struct report *r, const char *key, double value, bool integer)
 {
     for (int i = 0; i < r->n_values; i++) {
         if (strcmp(r->values[i].key, key) == 0) {
@@ -39,7 +39,7 @@ per_second(double count, double seconds)
 }
 
 void
-report_print(FILE *f, const struct report *r)
+stats_report_print(FILE *f, const struct report *r)
 {
     const struct stats *c = &r->counts;
     double rays = (double)total_rays(c);
@@ -123,7 +123,7 @@ json_real(FILE *f, const char *key, double v)
 }
 
 void
-report_write_json_to(FILE *f, const struct report *r)
+stats_report_write_json_to(FILE *f, const struct report *r)
 {
     const struct stats *c = &r->counts;
     fprintf(f, "{\n  \"stage\": ");
@@ -164,18 +164,18 @@ report_write_json_to(FILE *f, const struct report *r)
 }
 
 bool
-report_write_json(const struct report *r, const char *path, struct diag *err)
+stats_report_write_json(const struct report *r, const char *path, struct diag *err)
 {
     struct atomic_file af;
     if (!atomic_file_open(&af, path, err)) {
         return false;
     }
-    report_write_json_to(af.f, r);
+    stats_report_write_json_to(af.f, r);
     return atomic_file_commit(&af, err);
 }
 
 double
-clock_seconds(void)
+stats_clock_seconds(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_MONOTONIC, &ts);
@@ -183,7 +183,7 @@ clock_seconds(void)
 }
 
 uint64_t
-peak_rss_bytes(void)
+stats_peak_rss_bytes(void)
 {
     struct rusage usage;
     if (getrusage(RUSAGE_SELF, &usage) != 0) {

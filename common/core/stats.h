@@ -67,23 +67,23 @@ struct report {
 /* Add (or replace) a run-level value; integer values print without a
  * fraction.  Silently ignored past REPORT_MAX_VALUES (a programming error
  * caught by the stats tests). */
-void report_set(struct report *r, const char *key, double value, bool integer);
+void stats_report_set(struct report *r, const char *key, double value, bool integer);
 
 /* The short human report: time, rays by kind, rays/s. */
-void report_print(FILE *f, const struct report *r);
+void stats_report_print(FILE *f, const struct report *r);
 
 /* One JSON object with every key of CONTRACT.md plus the stage's own;
  * written through a temporary file renamed into place. */
-bool report_write_json(const struct report *r, const char *path, struct diag *err);
+bool stats_report_write_json(const struct report *r, const char *path, struct diag *err);
 
 /* The same object written to an open stream (standard output, or an atomic
  * file the caller finishes); the caller checks the stream for errors. */
-void report_write_json_to(FILE *f, const struct report *r);
+void stats_report_write_json_to(FILE *f, const struct report *r);
 
 /* Seconds on a monotonic clock (an arbitrary origin). */
-double clock_seconds(void);
+double stats_clock_seconds(void);
 
 /* Peak resident set size of this process, bytes (0 if unknown). */
-uint64_t peak_rss_bytes(void);
+uint64_t stats_peak_rss_bytes(void);
 
 #endif /* STATS_H */

@@ -12,7 +12,7 @@
 #include <cmath>
 
 extern "C" {
-#include "image.h"  // linear_from_srgb: the sRGB transfer function the encoders use
+#include "image.h"  // image_linear_from_srgb: the sRGB transfer function the encoders use
 }
 
 // 8192 x 8192: the largest textures in common use; four bytes a texel at 8
@@ -109,7 +109,7 @@ mean_colour(const tinygltf::Image &img, double mean[3], double *glow)
     double top = wide ? 65535 : 255;
     std::vector<double> linear(wide ? 0 : 256);
     for (size_t v = 0; v < linear.size(); v++) {
-        linear[v] = linear_from_srgb((float)v / 255.0f);
+        linear[v] = image_linear_from_srgb((float)v / 255.0f);
     }
     double sum[3] = {0, 0, 0};
     size_t glowing = 0;
@@ -119,7 +119,7 @@ mean_colour(const tinygltf::Image &img, double mean[3], double *glow)
         for (int c = 0; c < 3; c++) {
             size_t at = 4 * t + (size_t)c;
             unsigned v = wide ? (unsigned)p[2 * at] | (unsigned)p[2 * at + 1] << 8 : p[at];
-            sum[c] += wide ? linear_from_srgb((float)(v / top)) : linear[v];
+            sum[c] += wide ? image_linear_from_srgb((float)(v / top)) : linear[v];
             brightest = v > brightest ? v : brightest;
         }
         glowing += brightest * 255 > GLOW_SRGB8 * (unsigned)top;

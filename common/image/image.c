@@ -61,7 +61,7 @@ image_free(struct image *img)
 }
 
 void
-put(struct sink *s, const void *data, size_t n)
+image_sink_put(struct sink *s, const void *data, size_t n)
 {
     if (s->error || n == 0) {
         return;

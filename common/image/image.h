@@ -91,16 +91,16 @@ bool image_write_layers_to(
 bool image_read_pfm(const char *path, struct image *out, struct diag *err);
 
 /* The sRGB transfer function (IEC 61966-2-1) and its inverse, on [0, 1]. */
-float srgb_from_linear(float linear);
-float linear_from_srgb(float encoded);
+float image_srgb_from_linear(float linear);
+float image_linear_from_srgb(float encoded);
 
 /* Linear radiance to an 8-bit sRGB code: clamped to [0, 1], NaN gives 0. */
-uint8_t srgb_encode8(float linear);
+uint8_t image_srgb_encode8(float linear);
 
 /* Checksums of the PNG format, exposed for tests.  Start crc at 0 and
  * adler at 1; each call continues the running value. */
-uint32_t png_crc32(uint32_t crc, const uint8_t *data, size_t n);
-uint32_t png_adler32(uint32_t adler, const uint8_t *data, size_t n);
+uint32_t image_crc32(uint32_t crc, const uint8_t *data, size_t n);
+uint32_t image_adler32(uint32_t adler, const uint8_t *data, size_t n);
 
 /* The image as an 8-bit sRGB PNG in memory (malloc'd; *len bytes), for a
  * page that embeds it; NULL (err says why) when memory runs out. */
@@ -108,6 +108,6 @@ unsigned char *image_png_bytes(const struct image *img, size_t *len, struct diag
 
 /* data as base64 (RFC 4648, section 4) into f: the body of a
  * "data:image/png;base64," URI (RFC 2397). */
-void write_base64(FILE *f, const unsigned char *data, size_t n);
+void image_write_base64(FILE *f, const unsigned char *data, size_t n);
 
 #endif /* IMAGE_H */

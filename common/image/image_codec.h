@@ -23,7 +23,7 @@ struct sink {
 };
 
 /* Write n bytes to s, unless an earlier write failed (image.c). */
-void put(struct sink *s, const void *data, size_t n);
+void image_sink_put(struct sink *s, const void *data, size_t n);
 
 static inline void
 store_be32(uint8_t *p, uint32_t v)
@@ -43,14 +43,14 @@ struct bytes {
 
 /* A zlib stream (RFC 1950) of data, appended to out; false when memory ran
  * out (image_zlib.c). */
-bool zlib_compress(const uint8_t *data, size_t n, struct bytes *out);
+bool image_zlib_compress(const uint8_t *data, size_t n, struct bytes *out);
 
 /* Row y of img as 8-bit sRGB, 3 * width bytes (image_srgb.c). */
-void encode_row(const struct image *img, int y, uint8_t *out);
+void image_encode_row(const struct image *img, int y, uint8_t *out);
 
 /* The encoders, one file each. */
-void write_png(struct sink *s, const struct image *img);
-void write_ppm(struct sink *s, const struct image *img);
-void write_pfm(struct sink *s, const struct image *img);
+void image_write_png(struct sink *s, const struct image *img);
+void image_write_ppm(struct sink *s, const struct image *img);
+void image_write_pfm(struct sink *s, const struct image *img);
 
 #endif /* IMAGE_CODEC_H */

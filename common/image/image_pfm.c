@@ -27,7 +27,7 @@ store_le32(uint8_t *p, uint32_t v)
 
 /* PFM: a negative scale says little endian; rows run bottom to top. */
 void
-write_pfm(struct sink *s, const struct image *img)
+image_write_pfm(struct sink *s, const struct image *img)
 {
     errno = 0;
     if (fprintf(s->f, "PF\n%d %d\n-1.0\n", img->width, img->height) < 0) {
@@ -46,7 +46,7 @@ write_pfm(struct sink *s, const struct image *img)
             memcpy(&bits, &p[i], 4);
             store_le32(row + 4 * i, bits);
         }
-        put(s, row, n * 4);
+        image_sink_put(s, row, n * 4);
     }
     free(row);
 }

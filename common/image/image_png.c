@@ -30,12 +30,12 @@ put_chunk(struct sink *s, const char *type, const uint8_t *data, size_t len)
     store_be32(head, (uint32_t)len);
     memcpy(head + 4, type, 4);
     // The CRC covers the chunk type and data, not the length.
-    uint32_t crc = png_crc32(png_crc32(0, head + 4, 4), data, len);
+    uint32_t crc = image_crc32(image_crc32(0, head + 4, 4), data, len);
     uint8_t tail[4];
     store_be32(tail, crc);
-    put(s, head, sizeof head);
-    put(s, data, len);
-    put(s, tail, sizeof tail);
+    image_sink_put(s, head, sizeof head);
+    image_sink_put(s, data, len);
+    image_sink_put(s, tail, sizeof tail);
 }
 
 /* Paeth's predictor (PNG 9.4): whichever neighbour is closest to a + b - c. */
@@ -104,7 +104,7 @@ filtered_scanlines(const struct image *img, size_t *out_len)
         uint8_t *prior = rows;
         uint8_t *cur = rows + n;
         for (int y = 0; y < img->height; y++) {
-            encode_row(img, y, cur);
+            image_encode_row(img, y, cur);
             filter_row(cur, prior, n, raw + (size_t)y * (n + 1), rows + 2 * n);
             uint8_t *swap = prior;
             prior = cur;
@@ -119,7 +119,7 @@ filtered_scanlines(const struct image *img, size_t *out_len)
 }
 
 void
-write_png(struct sink *s, const struct image *img)
+image_write_png(struct sink *s, const struct image *img)
 {
     static const uint8_t signature[8] = {137, 'P', 'N', 'G', '\r', '\n', 26, '\n'};
     uint8_t ihdr[13];
@@ -134,10 +134,10 @@ write_png(struct sink *s, const struct image *img)
     size_t raw_len = 0;
     uint8_t *raw = filtered_scanlines(img, &raw_len);
     struct bytes z = {0};
-    if (!raw || !zlib_compress(raw, raw_len, &z)) {
+    if (!raw || !image_zlib_compress(raw, raw_len, &z)) {
         s->error = ENOMEM;
     }
-    put(s, signature, sizeof signature);
+    image_sink_put(s, signature, sizeof signature);
     put_chunk(s, "IHDR", ihdr, sizeof ihdr);
     put_chunk(s, "sRGB", srgb_intent, sizeof srgb_intent);
     for (size_t at = 0; at < z.len; at += IDAT_MAX) {
@@ -156,7 +156,7 @@ image_png_bytes(const struct image *img, size_t *len, struct diag *err)
     FILE *mem = open_memstream(&buf, &n);
     struct sink sink = {.f = mem};
     if (mem) {
-        write_png(&sink, img);
+        image_write_png(&sink, img);
     }
     if (!mem || fclose(mem) != 0 || sink.error != 0) {
         free(buf);
@@ -168,7 +168,7 @@ image_png_bytes(const struct image *img, size_t *len, struct diag *err)
 }
 
 void
-write_base64(FILE *f, const unsigned char *data, size_t n)
+image_write_base64(FILE *f, const unsigned char *data, size_t n)
 {
     static const char digits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     for (size_t i = 0; i < n; i += 3) {

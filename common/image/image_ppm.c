@@ -10,7 +10,7 @@
 #include <stdlib.h>
 
 void
-write_ppm(struct sink *s, const struct image *img)
+image_write_ppm(struct sink *s, const struct image *img)
 {
     errno = 0;
     if (fprintf(s->f, "P6\n%d %d\n255\n", img->width, img->height) < 0) {
@@ -23,8 +23,8 @@ write_ppm(struct sink *s, const struct image *img)
         return;
     }
     for (int y = 0; y < img->height; y++) {
-        encode_row(img, y, row);
-        put(s, row, n);
+        image_encode_row(img, y, row);
+        image_sink_put(s, row, n);
     }
     free(row);
 }

@@ -11,7 +11,7 @@
 /* ---- sRGB (IEC 61966-2-1) ---------------------------------------------- */
 
 float
-srgb_from_linear(float linear)
+image_srgb_from_linear(float linear)
 {
     // The linear segment near black meets the power curve at 0.0031308.
     if (linear <= 0.0031308f) {
@@ -21,7 +21,7 @@ srgb_from_linear(float linear)
 }
 
 float
-linear_from_srgb(float encoded)
+image_linear_from_srgb(float encoded)
 {
     if (encoded <= 0.04045f) {
         return encoded / 12.92f;
@@ -30,7 +30,7 @@ linear_from_srgb(float encoded)
 }
 
 uint8_t
-srgb_encode8(float linear)
+image_srgb_encode8(float linear)
 {
     // Written so that NaN takes the first branch: !(NaN > 0) is true.
     if (!(linear > 0.0f)) {
@@ -39,14 +39,14 @@ srgb_encode8(float linear)
     if (linear >= 1.0f) {
         return 255;
     }
-    return (uint8_t)(srgb_from_linear(linear) * 255.0f + 0.5f);
+    return (uint8_t)(image_srgb_from_linear(linear) * 255.0f + 0.5f);
 }
 
 void
-encode_row(const struct image *img, int y, uint8_t *out)
+image_encode_row(const struct image *img, int y, uint8_t *out)
 {
     const float *p = image_pixel(img, 0, y);
     for (size_t i = 0; i < (size_t)img->width * 3; i++) {
-        out[i] = srgb_encode8(p[i]);
+        out[i] = image_srgb_encode8(p[i]);
     }
 }

@@ -81,11 +81,11 @@ encode_stdio(
 {
     struct sink s = {.f = f};
     if (format == IMAGE_FORMAT_PNG) {
-        write_png(&s, img);
+        image_write_png(&s, img);
     } else if (format == IMAGE_FORMAT_PPM) {
-        write_ppm(&s, img);
+        image_write_ppm(&s, img);
     } else {
-        write_pfm(&s, img);
+        image_write_pfm(&s, img);
     }
     return s.error ? write_failed(path, s.error, err) : true;
 }

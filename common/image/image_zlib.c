@@ -18,7 +18,7 @@
 #define CRC32_POLY 0xEDB88320u
 
 uint32_t
-png_crc32(uint32_t crc, const uint8_t *data, size_t n)
+image_crc32(uint32_t crc, const uint8_t *data, size_t n)
 {
     // A 16-entry table, one input nibble per step: built on the stack in 64
     // shifts, so there is no shared state to initialise across threads.
@@ -47,7 +47,7 @@ png_crc32(uint32_t crc, const uint8_t *data, size_t n)
 #define ADLER_NMAX 5552
 
 uint32_t
-png_adler32(uint32_t adler, const uint8_t *data, size_t n)
+image_adler32(uint32_t adler, const uint8_t *data, size_t n)
 {
     uint32_t a = adler & 0xFFFF;
     uint32_t b = adler >> 16;
@@ -307,7 +307,7 @@ put_block(struct deflate *d, size_t start, size_t end, bool final)
 /* A zlib stream (RFC 1950) of data, appended to out; false when memory ran
  * out. */
 bool
-zlib_compress(const uint8_t *data, size_t n, struct bytes *out)
+image_zlib_compress(const uint8_t *data, size_t n, struct bytes *out)
 {
     struct deflate d = {.data = data, .n = n, .w = {.out = *out}};
     d.head = calloc((size_t)1 << HASH_BITS, sizeof *d.head);
@@ -333,7 +333,7 @@ zlib_compress(const uint8_t *data, size_t n, struct bytes *out)
         put_bits(&d.w, 0, 8 - d.w.n_bits);
     }
     uint8_t trailer[4];
-    store_be32(trailer, png_adler32(1, data, n));
+    store_be32(trailer, image_adler32(1, data, n));
     for (int i = 0; i < 4; i++) {
         push_byte(&d.w.out, trailer[i]);
     }

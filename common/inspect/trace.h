@@ -10,7 +10,7 @@
  * measurable.  This header is the recorder's side: the driver's calls, the
  * writers, and the trace_log_* functions inspect.h forwards to.  With
  * --pixel only that pixel is rendered, with the samples and random numbers
- * it gets in the full render (render_pixel_traced in driver.h), so its value
+ * it gets in the full render (driver_render_pixel_traced in driver.h), so its value
  * is the full render's bit for bit.
  *
  * Events form a tree of four levels: a camera sample (0), the ray of each

@@ -60,7 +60,7 @@ put_png_uri(FILE *f, const struct image *image, struct diag *err)
         return false;
     }
     fprintf(f, "data:image/png;base64,");
-    write_base64(f, png, len);
+    image_write_base64(f, png, len);
     free(png);
     return true;
 }

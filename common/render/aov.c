@@ -215,7 +215,7 @@ aov_render(
     };
     struct image unused = {0};
     struct render_result result;
-    bool ok = render_image(&job, &unused, &result, err);
+    bool ok = driver_render_image(&job, &unused, &result, err);
     image_free(&unused);
     if (!ok || result.passes_done == 0) {
         *interrupted = ok;

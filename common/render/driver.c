@@ -42,7 +42,7 @@ struct worker {
 };
 
 void
-render_set_share(const struct render_share *s)
+driver_set_share(const struct render_share *s)
 {
     share = s;
 }
@@ -55,7 +55,7 @@ tile_is_ours(int tile)
 }
 
 void
-render_request_stop(void)
+driver_request_stop(void)
 {
     stop_requested = 1;
 }
@@ -64,7 +64,7 @@ static void
 draw_progress(struct pass_state *ps, bool final)
 {
     const struct render_job *job = ps->job;
-    double now = clock_seconds();
+    double now = stats_clock_seconds();
     if (!final && now - ps->last_draw < 0.1) {
         return;
     }
@@ -247,7 +247,7 @@ copy_rendered(const struct render_job *job, struct image *out, struct render_res
 }
 
 uint64_t
-render_job_bytes(const struct render_job *job)
+driver_job_bytes(const struct render_job *job)
 {
     uint64_t per_pixel = 3 * sizeof(float) + 2 * sizeof(vec3) + sizeof(unsigned char);
     uint64_t pixels = (uint64_t)job->width * (uint64_t)job->height;
@@ -255,7 +255,7 @@ render_job_bytes(const struct render_job *job)
 }
 
 bool
-render_image(
+driver_render_image(
     const struct render_job *job,
     struct image *out,
     struct render_result *result,
@@ -282,11 +282,11 @@ render_image(
         diag_set(err, NULL, 0, 0, "out of memory for a %dx%d image", job->width, job->height);
     }
     pthread_mutex_init(&ps.draw_lock, NULL);
-    ps.start = clock_seconds();
+    ps.start = stats_clock_seconds();
     clock_t cpu_start = clock();
     bool thread_error = false;
     for (ps.pass = 0; ok && ps.pass < job->passes && !stop_requested; ps.pass++) {
-        bool over_time = job->time_limit > 0 && clock_seconds() - ps.start >= job->time_limit;
+        bool over_time = job->time_limit > 0 && stats_clock_seconds() - ps.start >= job->time_limit;
         if (over_time && ps.pass > 0) {
             break;
         }
@@ -311,7 +311,7 @@ render_image(
         write_mean(sum, result->passes_done, out);
         result->nan_pixels = count_flagged(bad, n);
         result->interrupted = stop_requested != 0;
-        result->seconds = clock_seconds() - ps.start;
+        result->seconds = stats_clock_seconds() - ps.start;
         result->cpu_seconds = (double)(clock() - cpu_start) / CLOCKS_PER_SEC;
         for (int i = 0; i < job->threads; i++) {
             stats_add(&result->counts, &workers[i].counts);
@@ -328,7 +328,7 @@ render_image(
 }
 
 void
-render_pixel_traced(
+driver_render_pixel_traced(
     const struct render_job *job,
     int px,
     int py,
@@ -337,7 +337,7 @@ render_pixel_traced(
     struct render_result *result)
 {
     *result = (struct render_result){0};
-    double start = clock_seconds();
+    double start = stats_clock_seconds();
     clock_t cpu_start = clock();
     vec3 sum = vec3_splat(0);
     unsigned char bad = 0;
@@ -354,6 +354,6 @@ render_pixel_traced(
     st.trace = NULL;
     result->counts = st;
     result->nan_pixels = bad;
-    result->seconds = clock_seconds() - start;
+    result->seconds = stats_clock_seconds() - start;
     result->cpu_seconds = (double)(clock() - cpu_start) / CLOCKS_PER_SEC;
 }

@@ -38,21 +38,21 @@ struct render_job {
 
 struct render_result {
     int passes_done; /* complete passes in the image */
-    bool interrupted; /* stopped early by render_request_stop() */
+    bool interrupted; /* stopped early by driver_request_stop() */
     uint64_t nan_pixels; /* pixels with a NaN or Inf estimate in any pass */
     struct stats counts; /* summed over threads */
     double seconds; /* wall-clock time */
     double cpu_seconds; /* processor time of all threads (steadier on a busy machine) */
 };
 
-/* The bytes render_image allocates for the job, before it allocates them:
+/* The bytes driver_render_image allocates for the job, before it allocates them:
  * per pixel the image (3 floats), one pass's estimates and their running
  * sum (a vec3 each) and a NaN flag; per thread its bookkeeping. */
-uint64_t render_job_bytes(const struct render_job *job);
+uint64_t driver_job_bytes(const struct render_job *job);
 
 /* Render into out (allocated here).  Returns false only when memory or
  * threads could not be had (err says which). */
-bool render_image(
+bool driver_render_image(
     const struct render_job *job,
     struct image *out,
     struct render_result *result,
@@ -61,10 +61,10 @@ bool render_image(
 struct trace;
 
 /* Render only pixel (px, py), pass after pass, with the random streams it
- * has in render_image, recording its rays into trace (trace.h); rgb gets
- * its value as render_image stores it, bit for bit.  The time limit is not
+ * has in driver_render_image, recording its rays into trace (trace.h); rgb gets
+ * its value as driver_render_image stores it, bit for bit.  The time limit is not
  * applied: every pass of the job is rendered. */
-void render_pixel_traced(
+void driver_render_pixel_traced(
     const struct render_job *job,
     int px,
     int py,
@@ -73,12 +73,12 @@ void render_pixel_traced(
     struct render_result *result);
 
 /* A share of one image's work, for a renderer split across processes that
- * share no memory (the browser's Web Workers, common/web/): render_image
+ * share no memory (the browser's Web Workers, common/web/): driver_render_image
  * renders only the tiles t with t % parts == part and leaves the others 0,
  * so the images of parts 0 .. parts-1 add up to the whole image, each pixel
  * computed exactly as without a share.  After each pass, on_pass (if set)
  * gets the mean of the passes so far.  `rendered`, when set, is this job's
- * image already rendered by the parts together: render_image returns a copy
+ * image already rendered by the parts together: driver_render_image returns a copy
  * of it instead of rendering (the pixel inspector's run, which traces one
  * pixel and draws it over the image). */
 struct render_share {
@@ -90,10 +90,10 @@ struct render_share {
 
 /* Set the share of the renders that follow; NULL (the default): the whole
  * image. */
-void render_set_share(const struct render_share *share);
+void driver_set_share(const struct render_share *share);
 
-/* Ask a running render_image to stop after the tiles in flight; safe to
+/* Ask a running driver_render_image to stop after the tiles in flight; safe to
  * call from a signal handler. */
-void render_request_stop(void);
+void driver_request_stop(void);
 
 #endif /* DRIVER_H */

@@ -56,7 +56,7 @@ on_stop_signal(int signo)
         return;
     }
     stop_received = 1;
-    render_request_stop();
+    driver_request_stop();
 }
 
 static void

@@ -7,13 +7,13 @@
  * column; a table says which named fields each statement takes, how many
  * values each has and the range they must lie in; one builder per statement
  * checks what the table cannot and appends to the scene.  Every failure goes
- * through fail(), which fills the diagnostic at a token and returns false:
+ * through scene_fail(), which fills the diagnostic at a token and returns false:
  * the first error stops the load and scene_free() releases what was built.
  *
  * The loader's files, all sharing the parser state of scene_parser.h, in
  * layers: each calls only those listed before it (tests/common/layers.sh
  * checks that no file calls back up).
- *   scene_lexer.c      errors (fail, show) and tokens
+ *   scene_lexer.c      errors (fail, scene_show) and tokens
  *   scene_fields.c     values and named fields, checked against the table
  *   scene_store.c      the scene's arrays: growth, lights, features, scene_free()
  *   scene_materials.c  the material statement and shapes' material names
@@ -68,7 +68,7 @@ static const struct statement {
     {.keyword = "camera",
      .once = true,
      .required = true,
-     .build = build_camera,
+     .build = scene_build_camera,
      .fields =
          {NUMBERS("origin", 3, true, NULL),
           NUMBERS("target", 3, true, NULL),
@@ -78,7 +78,7 @@ static const struct statement {
     {.keyword = "image",
      .once = true,
      .required = true,
-     .build = build_image,
+     .build = scene_build_image,
      .fields =
          {{.name = "width", .kind = VAL_INT, .arity = 1, .required = true, .range = &range_image},
           {.name = "height",
@@ -88,35 +88,35 @@ static const struct statement {
            .range = &range_image}}},
     {.keyword = "background",
      .once = true,
-     .build = build_color,
+     .build = scene_build_color,
      .fields = {NUMBERS("color", 3, true, &range_nonnegative)}},
     {.keyword = "ambient",
      .once = true,
-     .build = build_color,
+     .build = scene_build_color,
      .fields = {NUMBERS("color", 3, true, &range_nonnegative)}},
-    {.keyword = "material", .build = parse_material},
+    {.keyword = "material", .build = scene_parse_material},
     {.keyword = "sphere",
-     .build = build_sphere,
+     .build = scene_build_sphere,
      .fields =
          {NUMBERS("center", 3, true, NULL),
-          NUMBERS("radius", 1, true, &range_positive),
+          NUMBERS("radius", 1, true, &scene_range_positive),
           MATERIAL_REF}},
     {.keyword = "quad",
-     .build = build_quad,
+     .build = scene_build_quad,
      .fields =
          {NUMBERS("corner", 3, true, NULL),
           NUMBERS("edge1", 3, true, NULL),
           NUMBERS("edge2", 3, true, NULL),
           MATERIAL_REF}},
     {.keyword = "triangle",
-     .build = build_triangle,
+     .build = scene_build_triangle,
      .fields =
          {NUMBERS("v0", 3, true, NULL),
           NUMBERS("v1", 3, true, NULL),
           NUMBERS("v2", 3, true, NULL),
           MATERIAL_REF}},
     {.keyword = "mesh",
-     .build = build_mesh,
+     .build = scene_build_mesh,
      .fields =
          {{.name = "file", .kind = VAL_PATH, .arity = 1, .required = true},
           {.name = "material", .kind = VAL_NAME, .arity = 1},
@@ -124,21 +124,21 @@ static const struct statement {
           NUMBERS("rotate", 4, false, NULL),
           NUMBERS("translate", 3, false, NULL)}},
     {.keyword = "point_light",
-     .build = build_point_light,
+     .build = scene_build_point_light,
      .fields =
          {NUMBERS("position", 3, true, NULL), NUMBERS("intensity", 3, true, &range_nonnegative)}},
     {.keyword = "area_light",
-     .build = build_area_light,
+     .build = scene_build_area_light,
      .fields =
          {NUMBERS("corner", 3, true, NULL),
           NUMBERS("edge1", 3, true, NULL),
           NUMBERS("edge2", 3, true, NULL),
           NUMBERS("radiance", 3, true, &range_nonnegative)}},
     {.keyword = "sphere_light",
-     .build = build_sphere_light,
+     .build = scene_build_sphere_light,
      .fields =
          {NUMBERS("center", 3, true, NULL),
-          NUMBERS("radius", 1, true, &range_positive),
+          NUMBERS("radius", 1, true, &scene_range_positive),
           NUMBERS("radiance", 3, true, &range_nonnegative)}},
 };
 
@@ -149,21 +149,21 @@ static bool
 parse_statement(struct parser *p, const struct token *kw)
 {
     int i = 0;
-    while (i < N_STATEMENTS && !token_is(kw, statements[i].keyword)) {
+    while (i < N_STATEMENTS && !scene_token_is(kw, statements[i].keyword)) {
         i++;
     }
     if (i == N_STATEMENTS) {
-        return fail(p, kw, "unknown keyword %s", show(kw).s);
+        return scene_fail(p, kw, "unknown keyword %s", scene_show(kw).s);
     }
     const struct statement *st = &statements[i];
     if (st->once && p->seen[i].line) {
         int first = p->seen[i].line;
-        return fail(p, kw, "duplicate '%s' statement (first on line %d)", st->keyword, first);
+        return scene_fail(p, kw, "duplicate '%s' statement (first on line %d)", st->keyword, first);
     }
-    p->seen[i] = p->seen[i].line ? p->seen[i] : loc_of(kw);
+    p->seen[i] = p->seen[i].line ? p->seen[i] : scene_loc_of(kw);
     struct fields fs = {.spec = st->fields};
     snprintf(fs.context, sizeof fs.context, "'%s'", st->keyword);
-    if (st->fields[0].name && !read_fields(p, kw, &fs)) {
+    if (st->fields[0].name && !scene_read_fields(p, kw, &fs)) {
         return false;
     }
     return st->build(p, kw, &fs);
@@ -174,7 +174,7 @@ parse_scene(struct parser *p)
 {
     struct token tok;
     do {
-        if (!next_token(p, &tok)) {
+        if (!scene_next_token(p, &tok)) {
             return false;
         }
         if (tok.kind == TOK_WORD || tok.kind == TOK_STRING) {
@@ -185,7 +185,7 @@ parse_scene(struct parser *p)
     } while (tok.kind != TOK_EOF);
     for (int i = 0; i < N_STATEMENTS; i++) {
         if (statements[i].required && !p->seen[i].line) {
-            return fail(p, &tok, "missing '%s' statement", statements[i].keyword);
+            return scene_fail(p, &tok, "missing '%s' statement", statements[i].keyword);
         }
     }
     return true;

@@ -3,7 +3,7 @@
  * camera, the image size, background and ambient, spheres, quads, single
  * triangles and the lights (point, area and sphere lights).  Each checks
  * what the field table cannot (a camera's up not along its view, a light of
- * non-zero area), appends to the scene through grow() (scene_store.c) and
+ * non-zero area), appends to the scene through scene_grow() (scene_store.c) and
  * records the features the element uses.
  */
 #include "scene_parser.h"
@@ -33,27 +33,27 @@ sine_between(const double a_in[3], const double b_in[3])
 }
 
 bool
-build_camera(struct parser *p, const struct token *kw, struct fields *fs)
+scene_build_camera(struct parser *p, const struct token *kw, struct fields *fs)
 {
     (void)kw;
-    vec3 o = vec_of(fs, "origin");
-    vec3 t = vec_of(fs, "target");
-    vec3 up = vec_of(fs, "up");
+    vec3 o = scene_vec_of(fs, "origin");
+    vec3 t = scene_vec_of(fs, "target");
+    vec3 up = scene_vec_of(fs, "up");
     if (o.x == t.x && o.y == t.y && o.z == t.z) {
-        return fail(p, &get(fs, "target")->key, "target must differ from origin");
+        return scene_fail(p, &scene_get(fs, "target")->key, "target must differ from origin");
     }
     if (vec3_is_zero(up)) {
-        return fail(p, &get(fs, "up")->key, "up must be non-zero");
+        return scene_fail(p, &scene_get(fs, "up")->key, "up must be non-zero");
     }
     // In double, where the difference of two reals cannot overflow.
     double view[3] = {(double)t.x - o.x, (double)t.y - o.y, (double)t.z - o.z};
     double up_d[3] = {up.x, up.y, up.z};
     if (!(sine_between(view, up_d) >= MIN_UP_SINE)) {
         const char *msg = "up must not be parallel to the view direction (target - origin)";
-        return fail(p, &get(fs, "up")->key, "%s", msg);
+        return scene_fail(p, &scene_get(fs, "up")->key, "%s", msg);
     }
-    real fov = get(fs, "fov")->num[0];
-    const struct field_value *near = get(fs, "near");
+    real fov = scene_get(fs, "fov")->num[0];
+    const struct field_value *near = scene_get(fs, "near");
     p->scene->camera = (struct camera_desc){
         .origin = o,
         .target = t,
@@ -64,43 +64,43 @@ build_camera(struct parser *p, const struct token *kw, struct fields *fs)
 }
 
 bool
-build_image(struct parser *p, const struct token *kw, struct fields *fs)
+scene_build_image(struct parser *p, const struct token *kw, struct fields *fs)
 {
     (void)kw;
-    p->scene->width = (int)get(fs, "width")->integer;
-    p->scene->height = (int)get(fs, "height")->integer;
+    p->scene->width = (int)scene_get(fs, "width")->integer;
+    p->scene->height = (int)scene_get(fs, "height")->integer;
     return true;
 }
 
 /* background and ambient: a colour, and a feature when it is not black. */
 bool
-build_color(struct parser *p, const struct token *kw, struct fields *fs)
+scene_build_color(struct parser *p, const struct token *kw, struct fields *fs)
 {
-    bool background = token_is(kw, "background");
-    vec3 color = vec_of(fs, "color");
+    bool background = scene_token_is(kw, "background");
+    vec3 color = scene_vec_of(fs, "color");
     *(background ? &p->scene->background : &p->scene->ambient) = color;
     if (!vec3_is_zero(color)) {
-        use_feature(p, background ? FEAT_ENVIRONMENT : FEAT_AMBIENT, kw);
+        scene_use_feature(p, background ? FEAT_ENVIRONMENT : FEAT_AMBIENT, kw);
     }
     return true;
 }
 
 bool
-build_sphere(struct parser *p, const struct token *kw, struct fields *fs)
+scene_build_sphere(struct parser *p, const struct token *kw, struct fields *fs)
 {
     struct scene *s = p->scene;
     int material;
-    if (!use_material(p, kw, fs, &material)) {
+    if (!scene_use_material(p, kw, fs, &material)) {
         return false;
     }
-    struct sphere *a = grow(p, kw, s->spheres, s->n_spheres + 1, &p->cap.spheres, sizeof *a);
+    struct sphere *a = scene_grow(p, kw, s->spheres, s->n_spheres + 1, &p->cap.spheres, sizeof *a);
     if (!a) {
         return false;
     }
     s->spheres = a;
-    real radius = get(fs, "radius")->num[0];
+    real radius = scene_get(fs, "radius")->num[0];
     a[s->n_spheres++] = (struct sphere){
-        .center = vec_of(fs, "center"),
+        .center = scene_vec_of(fs, "center"),
         .radius = radius,
         .material = material,
         .line = kw->line};
@@ -109,39 +109,40 @@ build_sphere(struct parser *p, const struct token *kw, struct fields *fs)
 
 /* A quad of zero area is allowed: it is never hit. */
 bool
-build_quad(struct parser *p, const struct token *kw, struct fields *fs)
+scene_build_quad(struct parser *p, const struct token *kw, struct fields *fs)
 {
     struct scene *s = p->scene;
     int material;
-    if (!use_material(p, kw, fs, &material)) {
+    if (!scene_use_material(p, kw, fs, &material)) {
         return false;
     }
-    struct quad *a = grow(p, kw, s->quads, s->n_quads + 1, &p->cap.quads, sizeof *a);
+    struct quad *a = scene_grow(p, kw, s->quads, s->n_quads + 1, &p->cap.quads, sizeof *a);
     if (!a) {
         return false;
     }
     s->quads = a;
     struct quad *q = &a[s->n_quads++];
-    *q = (struct quad){.corner = vec_of(fs, "corner"), .material = material, .line = kw->line};
-    q->edge1 = vec_of(fs, "edge1");
-    q->edge2 = vec_of(fs, "edge2");
+    *q =
+        (struct quad){.corner = scene_vec_of(fs, "corner"), .material = material, .line = kw->line};
+    q->edge1 = scene_vec_of(fs, "edge1");
+    q->edge2 = scene_vec_of(fs, "edge2");
     return true;
 }
 
 /* A triangle of zero area is allowed, as in meshes: it is never hit. */
 bool
-build_triangle(struct parser *p, const struct token *kw, struct fields *fs)
+scene_build_triangle(struct parser *p, const struct token *kw, struct fields *fs)
 {
     struct scene *s = p->scene;
     int material;
-    if (!use_material(p, kw, fs, &material) || !room_for_mesh(p, kw, 3, 1)) {
+    if (!scene_use_material(p, kw, fs, &material) || !scene_room_for_mesh(p, kw, 3, 1)) {
         return false;
     }
     static const char *const corners[] = {"v0", "v1", "v2"};
     struct triangle tri = {.material = material, .smooth = false, .line = kw->line};
     for (int i = 0; i < 3; i++) {
         tri.v[i] = s->n_vertices;
-        s->positions[s->n_vertices] = vec_of(fs, corners[i]);
+        s->positions[s->n_vertices] = scene_vec_of(fs, corners[i]);
         s->normals[s->n_vertices++] = vec3_splat(0);
     }
     s->triangles[s->n_triangles++] = tri;
@@ -149,47 +150,48 @@ build_triangle(struct parser *p, const struct token *kw, struct fields *fs)
 }
 
 bool
-build_point_light(struct parser *p, const struct token *kw, struct fields *fs)
+scene_build_point_light(struct parser *p, const struct token *kw, struct fields *fs)
 {
     struct point_light light = {
-        .position = vec_of(fs, "position"),
-        .intensity = vec_of(fs, "intensity"),
-        .loc = loc_of(kw)};
-    return add_point_light(p, kw, light);
+        .position = scene_vec_of(fs, "position"),
+        .intensity = scene_vec_of(fs, "intensity"),
+        .loc = scene_loc_of(kw)};
+    return scene_add_point_light(p, kw, light);
 }
 
 bool
-build_area_light(struct parser *p, const struct token *kw, struct fields *fs)
+scene_build_area_light(struct parser *p, const struct token *kw, struct fields *fs)
 {
-    struct area_light light = {.corner = vec_of(fs, "corner"), .loc = loc_of(kw)};
-    light.edge1 = vec_of(fs, "edge1");
-    light.edge2 = vec_of(fs, "edge2");
-    light.radiance = vec_of(fs, "radiance");
+    struct area_light light = {.corner = scene_vec_of(fs, "corner"), .loc = scene_loc_of(kw)};
+    light.edge1 = scene_vec_of(fs, "edge1");
+    light.edge2 = scene_vec_of(fs, "edge2");
+    light.radiance = scene_vec_of(fs, "radiance");
     real area = area_light_area(&light);
     if (!isfinite(area)) {
-        return fail(p, kw, "area_light is too large (its area is not a finite number)");
+        return scene_fail(p, kw, "area_light is too large (its area is not a finite number)");
     }
     if (!(area > 0)) {
-        return fail(p, kw, "area_light has zero area (edge1 and edge2 are parallel or zero)");
+        return scene_fail(p, kw, "area_light has zero area (edge1 and edge2 are parallel or zero)");
     }
-    return add_area_light(p, kw, light);
+    return scene_add_area_light(p, kw, light);
 }
 
 bool
-build_sphere_light(struct parser *p, const struct token *kw, struct fields *fs)
+scene_build_sphere_light(struct parser *p, const struct token *kw, struct fields *fs)
 {
     struct scene *s = p->scene;
     int n = s->n_sphere_lights;
-    struct sphere_light *a = grow(p, kw, s->sphere_lights, n + 1, &p->cap.sphere_lights, sizeof *a);
+    struct sphere_light *a =
+        scene_grow(p, kw, s->sphere_lights, n + 1, &p->cap.sphere_lights, sizeof *a);
     if (!a) {
         return false;
     }
     s->sphere_lights = a;
     a[s->n_sphere_lights++] = (struct sphere_light){
-        .center = vec_of(fs, "center"),
-        .radius = get(fs, "radius")->num[0],
-        .radiance = vec_of(fs, "radiance"),
-        .loc = loc_of(kw)};
-    use_feature(p, FEAT_SPHERE_LIGHT, kw);
+        .center = scene_vec_of(fs, "center"),
+        .radius = scene_get(fs, "radius")->num[0],
+        .radiance = scene_vec_of(fs, "radiance"),
+        .loc = scene_loc_of(kw)};
+    scene_use_feature(p, FEAT_SPHERE_LIGHT, kw);
     return true;
 }

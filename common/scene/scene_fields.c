@@ -2,7 +2,7 @@
  * scene_fields.c - a statement's named fields and their values: numbers
  * (decimal only, finite, representable as a real), integers, names and file
  * names; each field at most once, its values within the range the statement
- * table gives, and the required ones present.  get() and vec_of() hand the
+ * table gives, and the required ones present.  scene_get() and scene_vec_of() hand the
  * values to the builders.
  */
 #include "scene_parser.h"
@@ -15,7 +15,7 @@
 #define MAX_NUMBER_CHARS 64 /* a longer token is no number anyone writes */
 
 /* The range most sizes share (radii, an index of refraction, ...). */
-const struct range range_positive = {.lo = 0, .hi = REAL_MAX, .lo_open = true, .text = "> 0"};
+const struct range scene_range_positive = {.lo = 0, .hi = REAL_MAX, .lo_open = true, .text = "> 0"};
 
 /* --- Values --------------------------------------------------------------- */
 
@@ -103,19 +103,19 @@ read_number(struct parser *p, struct field_value *v)
 {
     struct token t;
     real x = 0;
-    if (!next_token(p, &t)) {
+    if (!scene_next_token(p, &t)) {
         return false;
     }
     enum number_status status = to_number(&t, &x);
     if (status == NUMBER_OUT_OF_RANGE) {
-        return fail(p, &t, "number %s is out of range", show(&t).s);
+        return scene_fail(p, &t, "number %s is out of range", scene_show(&t).s);
     }
     if (status != NUMBER_OK) {
         // "a number", "3 finite numbers", "1 or 3 numbers" (the first value of scale)
         static const char *const counts[] = {"1 or 3", "a", "2", "3", "4"};
         int n = v->spec->kind != VAL_SCALE ? v->spec->arity : v->n == 0 ? 0 : 3;
         const char *finite = status == NUMBER_NOT_FINITE ? " finite" : "";
-        return fail(
+        return scene_fail(
             p,
             &t,
             "expected %s%s number%s after '%s', got %s",
@@ -123,7 +123,7 @@ read_number(struct parser *p, struct field_value *v)
             finite,
             n == 1 ? "" : "s",
             v->spec->name,
-            show(&t).s);
+            scene_show(&t).s);
     }
     v->val[v->n] = t;
     v->num[v->n++] = x;
@@ -136,7 +136,7 @@ read_scale(struct parser *p, struct field_value *v)
 {
     struct token next;
     real ignored;
-    if (!read_number(p, v) || !peek_token(p, &next)) {
+    if (!read_number(p, v) || !scene_peek_token(p, &next)) {
         return false;
     }
     if (to_number(&next, &ignored) == NUMBER_BAD) {
@@ -149,12 +149,17 @@ static bool
 read_integer(struct parser *p, struct field_value *v)
 {
     struct token t;
-    if (!next_token(p, &t)) {
+    if (!scene_next_token(p, &t)) {
         return false;
     }
     enum number_status status = to_integer(&t, &v->integer);
     if (status == NUMBER_BAD) {
-        return fail(p, &t, "expected an integer after '%s', got %s", v->spec->name, show(&t).s);
+        return scene_fail(
+            p,
+            &t,
+            "expected an integer after '%s', got %s",
+            v->spec->name,
+            scene_show(&t).s);
     }
     if (status == NUMBER_OUT_OF_RANGE) {
         v->integer = t.text[0] == '-' ? LONG_MIN : LONG_MAX;  // fails the range check
@@ -167,13 +172,19 @@ static bool
 read_word(struct parser *p, struct field_value *v)
 {
     struct token t;
-    if (!next_token(p, &t)) {
+    if (!scene_next_token(p, &t)) {
         return false;
     }
     bool is_path = v->spec->kind == VAL_PATH;
     if (t.kind != TOK_WORD && !(is_path && t.kind == TOK_STRING)) {
         const char *want = is_path ? "a file name" : "a material name";
-        return fail(p, &t, "expected %s after '%s', got %s", want, v->spec->name, show(&t).s);
+        return scene_fail(
+            p,
+            &t,
+            "expected %s after '%s', got %s",
+            want,
+            v->spec->name,
+            scene_show(&t).s);
     }
     v->val[v->n++] = t;
     return true;
@@ -214,7 +225,7 @@ check_range(struct parser *p, const struct field_value *v)
             const char *each = v->n > 1 ? " per component" : "";
             const char *name = v->spec->name;
             int len = (int)t->len;
-            return fail(p, t, "%s must be %s%s, got %.*s", name, r->text, each, len, t->text);
+            return scene_fail(p, t, "%s must be %s%s, got %.*s", name, r->text, each, len, t->text);
         }
     }
     return true;
@@ -236,7 +247,12 @@ unknown_field(
         if (last->spec->kind != VAL_SCALE) {
             snprintf(count, sizeof count, "%d", last->spec->arity);
         }
-        return fail(p, t, "too many numbers after '%s', expected %s", last->spec->name, count);
+        return scene_fail(
+            p,
+            t,
+            "too many numbers after '%s', expected %s",
+            last->spec->name,
+            count);
     }
     char list[160] = "";  // "center, radius or material"
     size_t used = 0;
@@ -244,27 +260,33 @@ unknown_field(
         const char *sep = i == 0 ? "" : fs->spec[i + 1].name ? ", " : " or ";
         used += (size_t)snprintf(list + used, sizeof list - used, "%s%s", sep, fs->spec[i].name);
     }
-    return fail(p, t, "unknown field %s in %s (expected %s)", show(t).s, fs->context, list);
+    return scene_fail(
+        p,
+        t,
+        "unknown field %s in %s (expected %s)",
+        scene_show(t).s,
+        fs->context,
+        list);
 }
 
 /* Named fields up to the end of the line, each at most once and its values
  * in range; then every required field must have been given. */
 bool
-read_fields(struct parser *p, const struct token *kw, struct fields *fs)
+scene_read_fields(struct parser *p, const struct token *kw, struct fields *fs)
 {
     const struct field_value *last = NULL;
     struct token t;
-    while (next_token(p, &t)) {
+    while (scene_next_token(p, &t)) {
         if (t.kind == TOK_EOL || t.kind == TOK_EOF) {
             for (const struct field_spec *f = fs->spec; f->name; f++) {
                 if (f->required && !fs->v[f - fs->spec].spec) {
-                    return fail(p, kw, "missing field '%s' in %s", f->name, fs->context);
+                    return scene_fail(p, kw, "missing field '%s' in %s", f->name, fs->context);
                 }
             }
             return true;
         }
         int i = 0;
-        while (fs->spec[i].name && !token_is(&t, fs->spec[i].name)) {
+        while (fs->spec[i].name && !scene_token_is(&t, fs->spec[i].name)) {
             i++;
         }
         if (!fs->spec[i].name) {
@@ -272,7 +294,7 @@ read_fields(struct parser *p, const struct token *kw, struct fields *fs)
         }
         struct field_value *v = &fs->v[i];
         if (v->spec) {
-            return fail(p, &t, "duplicate field %s in %s", show(&t).s, fs->context);
+            return scene_fail(p, &t, "duplicate field %s in %s", scene_show(&t).s, fs->context);
         }
         *v = (struct field_value){.spec = &fs->spec[i], .key = t};
         if (!read_values(p, v) || !check_range(p, v)) {
@@ -284,7 +306,7 @@ read_fields(struct parser *p, const struct token *kw, struct fields *fs)
 }
 
 const struct field_value *
-get(const struct fields *fs, const char *name)
+scene_get(const struct fields *fs, const char *name)
 {
     for (int i = 0; fs->spec[i].name; i++) {
         if (strcmp(fs->spec[i].name, name) == 0) {
@@ -295,8 +317,8 @@ get(const struct fields *fs, const char *name)
 }
 
 vec3
-vec_of(const struct fields *fs, const char *name)
+scene_vec_of(const struct fields *fs, const char *name)
 {
-    const struct field_value *v = get(fs, name);
+    const struct field_value *v = scene_get(fs, name);
     return vec3_make(v->num[0], v->num[1], v->num[2]);
 }

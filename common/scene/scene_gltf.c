@@ -76,22 +76,22 @@ add_file_material(
 {
     struct scene *s = p->scene;
     if (s->n_materials >= SCENE_MAX_MATERIALS) {
-        return fail(p, at, "too many materials (at most %d)", SCENE_MAX_MATERIALS);
+        return scene_fail(p, at, "too many materials (at most %d)", SCENE_MAX_MATERIALS);
     }
     struct material *a =
-        grow(p, at, s->materials, s->n_materials + 1, &p->cap.materials, sizeof *a);
+        scene_grow(p, at, s->materials, s->n_materials + 1, &p->cap.materials, sizeof *a);
     if (!a) {
         return false;
     }
     s->materials = a;
     struct material *m = &a[s->n_materials];
     *m = map->material;
-    m->loc = loc_of(at);
+    m->loc = scene_loc_of(at);
     snprintf(m->name, sizeof m->name, "%.36s (%.24s)", g->name, file);
     if (m->kind == MAT_MIRROR) {
-        use_feature(p, FEAT_MIRROR, at);
+        scene_use_feature(p, FEAT_MIRROR, at);
     } else if (m->kind == MAT_GLASS) {
-        use_feature(p, FEAT_GLASS, at);
+        scene_use_feature(p, FEAT_GLASS, at);
     }
     *out = s->n_materials++;
     return true;
@@ -156,7 +156,7 @@ note_one(
     if (count > 1) {
         snprintf(more, sizeof more, " (and %d more materials)", count - 1);
     }
-    scene_add_note(p->scene, loc_of(at), "%s: material '%s': %s%s", file, name, why, more);
+    scene_add_note(p->scene, scene_loc_of(at), "%s: material '%s': %s%s", file, name, why, more);
 }
 
 /* One note per dropped kind: the first material that dropped it, and how
@@ -175,7 +175,7 @@ note_dropped(struct parser *p, const struct token *at, const char *file, const s
 }
 
 bool
-map_file_materials(
+scene_map_file_materials(
     struct parser *p,
     const struct token *at,
     const char *file,
@@ -188,7 +188,7 @@ map_file_materials(
     struct drop_tally *t = calloc(1, sizeof *t);
     bool ok = surf && used && t;
     if (!ok) {
-        fail(p, at, "out of memory for %zu materials", n);
+        scene_fail(p, at, "out of memory for %zu materials", n);
         diag_mark_no_memory(p->err);
     }
     for (size_t i = 0; ok && i < mesh->n_triangles; i++) {

@@ -46,7 +46,7 @@ static const struct gltf_camera *
 choose_camera(struct parser *p, const struct token *at, const struct gltf_mesh *m, const char *name)
 {
     if (m->n_cameras == 0) {
-        fail(
+        scene_fail(
             p,
             at,
             "the file has no camera: add one (in Blender: Add > Camera, then export with "
@@ -70,7 +70,7 @@ choose_camera(struct parser *p, const struct token *at, const struct gltf_mesh *
             m->cameras[i].name);
         used = used < sizeof list ? used : sizeof list;
     }
-    fail(p, at, "no camera named '%s' in the file (its cameras: %s)", name, list);
+    scene_fail(p, at, "no camera named '%s' in the file (its cameras: %s)", name, list);
     return NULL;
 }
 
@@ -79,7 +79,7 @@ set_camera(struct parser *p, const struct token *at, const struct gltf_camera *c
 {
     struct scene *s = p->scene;
     if (!c->perspective) {
-        return fail(
+        return scene_fail(
             p,
             at,
             "camera '%s' is orthographic: only perspective cameras are supported",
@@ -87,7 +87,7 @@ set_camera(struct parser *p, const struct token *at, const struct gltf_camera *c
     }
     double fov = c->yfov * RAD_TO_DEG;
     if (!(fov > 0 && fov < 180)) {
-        return fail(
+        return scene_fail(
             p,
             at,
             "camera '%s': yfov must be in (0, pi) radians, got %g",
@@ -127,7 +127,7 @@ add_lights(struct parser *p, const struct token *at, const char *file, const str
         }
         first_ranged = l->range > 0 && ranged++ == 0 ? l : first_ranged;
         vec3 intensity = vec3_scale(vec_from(l->color), (real)(l->intensity / LUMENS_PER_WATT));
-        if (!add_point_light(
+        if (!scene_add_point_light(
                 p,
                 at,
                 (struct point_light){.position = vec_from(l->position), .intensity = intensity})) {
@@ -138,7 +138,7 @@ add_lights(struct parser *p, const struct token *at, const char *file, const str
         if (skipped[t]) {
             scene_add_note(
                 p->scene,
-                loc_of(at),
+                scene_loc_of(at),
                 "%s: %s light '%s' not modelled; ignored%s",
                 file,
                 light_type_names[t],
@@ -149,7 +149,7 @@ add_lights(struct parser *p, const struct token *at, const char *file, const str
     if (first_ranged) {
         scene_add_note(
             p->scene,
-            loc_of(at),
+            scene_loc_of(at),
             "%s: point light '%s': range %g not modelled; it lights every distance",
             file,
             first_ranged->name,
@@ -178,12 +178,12 @@ add_headlight(struct parser *p, const struct token *at, const char *file)
     real intensity = PI * d * d;
     scene_add_note(
         s,
-        loc_of(at),
+        scene_loc_of(at),
         "%s has no lights; lit by a headlight, a point light of %g W/sr at the camera (add "
         "lights to the file to light it yourself)",
         file,
         (double)intensity);
-    return add_point_light(
+    return scene_add_point_light(
         p,
         at,
         (struct point_light){.position = s->camera.origin, .intensity = vec3_splat(intensity)});
@@ -214,9 +214,9 @@ scene_load_gltf(
     const char *file = slash ? slash + 1 : path;
     struct gltf_mesh mesh = {.n_vertices = 0};
     const struct gltf_camera *cam = NULL;
-    bool ok = load_gltf_file(&p, &at, NULL, path, &mesh)
+    bool ok = scene_load_gltf_file(&p, &at, NULL, path, &mesh)
               && (cam = choose_camera(&p, &at, &mesh, camera)) != NULL && set_camera(&p, &at, cam)
-              && append_file_mesh(&p, &at, file, &mesh) && add_lights(&p, &at, file, &mesh);
+              && scene_append_file_mesh(&p, &at, file, &mesh) && add_lights(&p, &at, file, &mesh);
     if (ok && out->n_point_lights == 0 && out->n_area_lights == 0) {
         ok = add_headlight(&p, &at, file);
     }

@@ -1,5 +1,5 @@
 /*
- * scene_lexer.c - the scene loader's errors and tokens: fail() and the way
+ * scene_lexer.c - the scene loader's errors and tokens: scene_fail() and the way
  * messages quote a token, and the lexer that cuts the text into words,
  * quoted strings and ends of line with their line and column (GNU columns:
  * characters, tabs to the next multiple of 8).  Bytes that are not UTF-8
@@ -13,7 +13,7 @@
 #define TAB_WIDTH 8 /* GNU columns: a tab moves to the next multiple of 8, plus 1 */
 
 bool
-fail(struct parser *p, const struct token *at, const char *fmt, ...)
+scene_fail(struct parser *p, const struct token *at, const char *fmt, ...)
 {
     char msg[sizeof p->err->msg];  // sizeof does not evaluate: p->err may be NULL
     va_list ap;
@@ -25,7 +25,7 @@ fail(struct parser *p, const struct token *at, const char *fmt, ...)
 }
 
 struct shown
-show(const struct token *t)
+scene_show(const struct token *t)
 {
     struct shown out;
     if (t->kind == TOK_EOL || t->kind == TOK_EOF) {
@@ -46,13 +46,13 @@ show(const struct token *t)
 }
 
 bool
-token_is(const struct token *t, const char *word)
+scene_token_is(const struct token *t, const char *word)
 {
     return t->kind == TOK_WORD && strlen(word) == t->len && memcmp(t->text, word, t->len) == 0;
 }
 
 struct src_loc
-loc_of(const struct token *t)
+scene_loc_of(const struct token *t)
 {
     return (struct src_loc){.line = t->line, .col = t->col};
 }
@@ -100,11 +100,11 @@ advance(struct parser *p)
     int n = char_bytes(p);
     if (n == 0) {
         struct token at = here(p);
-        return fail(p, &at, "unexpected byte 0x%02x", (unsigned char)p->src[p->pos]);
+        return scene_fail(p, &at, "unexpected byte 0x%02x", (unsigned char)p->src[p->pos]);
     }
     if (n == 3 && memcmp(p->src + p->pos, "\xEF\xBB\xBF", 3) == 0) {
         struct token at = here(p);
-        return fail(
+        return scene_fail(
             p,
             &at,
             "an invisible byte-order mark (U+FEFF, bytes EF BB BF) inside the file (files "
@@ -141,7 +141,7 @@ lex_string(struct parser *p, struct token *tok)
     advance(p);
     for (;;) {
         if (at_line_end(p)) {
-            return fail(p, tok, "unterminated quoted string");
+            return scene_fail(p, tok, "unterminated quoted string");
         }
         const char *c = p->src + p->pos;
         if (c[0] == '"') {
@@ -155,7 +155,7 @@ lex_string(struct parser *p, struct token *tok)
     advance(p);
     tok->len = (size_t)(p->src + p->pos - tok->text);
     struct token after = here(p);
-    return at_word_end(p) || fail(p, &after, "expected a space after the closing quote");
+    return at_word_end(p) || scene_fail(p, &after, "expected a space after the closing quote");
 }
 
 static bool
@@ -165,7 +165,7 @@ lex_word(struct parser *p, struct token *tok)
     while (!at_word_end(p)) {
         if (p->src[p->pos] == '"') {
             struct token at = here(p);
-            return fail(p, &at, "unexpected '\"' inside a word (quote the whole file name)");
+            return scene_fail(p, &at, "unexpected '\"' inside a word (quote the whole file name)");
         }
         if (!advance(p)) {
             return false;
@@ -178,7 +178,7 @@ lex_word(struct parser *p, struct token *tok)
 /* The next token: comments are skipped, each line ends with a TOK_EOL and
  * the text with a TOK_EOF (returned again by every later call). */
 bool
-next_token(struct parser *p, struct token *tok)
+scene_next_token(struct parser *p, struct token *tok)
 {
     while (p->pos < p->len && (p->src[p->pos] == ' ' || p->src[p->pos] == '\t')) {
         advance(p);
@@ -207,12 +207,12 @@ next_token(struct parser *p, struct token *tok)
 }
 
 bool
-peek_token(struct parser *p, struct token *tok)
+scene_peek_token(struct parser *p, struct token *tok)
 {
     size_t pos = p->pos;
     int line = p->line;
     int col = p->col;
-    bool ok = next_token(p, tok);
+    bool ok = scene_next_token(p, tok);
     p->pos = pos;
     p->line = line;
     p->col = col;

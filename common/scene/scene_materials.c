@@ -13,7 +13,7 @@ static int
 find_material(const struct scene *s, const struct token *name)
 {
     for (int i = 0; i < s->n_materials; i++) {
-        if (token_is(name, s->materials[i].name)) {
+        if (scene_token_is(name, s->materials[i].name)) {
             return i;
         }
     }
@@ -32,10 +32,20 @@ unknown_material(struct parser *p, const struct token *name)
             (size_t)snprintf(list + used, sizeof list - used, "%s%s", sep, s->materials[i].name);
     }
     if (s->n_materials == 0) {
-        return fail(p, name, "unknown material %s (none is defined before it)", show(name).s);
+        return scene_fail(
+            p,
+            name,
+            "unknown material %s (none is defined before it)",
+            scene_show(name).s);
     }
     const char *more = s->n_materials > MAX_LISTED ? ", ..." : "";
-    return fail(p, name, "unknown material %s (defined materials: %s%s)", show(name).s, list, more);
+    return scene_fail(
+        p,
+        name,
+        "unknown material %s (defined materials: %s%s)",
+        scene_show(name).s,
+        list,
+        more);
 }
 
 static const struct range range_unit = {.lo = 0, .hi = 1, .text = "in [0, 1]"};
@@ -56,7 +66,7 @@ static const struct material_kind_spec {
     [MAT_GLASS] =
         {.name = "glass",
          .feature = FEAT_GLASS,
-         .fields = {NUMBERS("ior", 1, true, &range_positive)}},
+         .fields = {NUMBERS("ior", 1, true, &scene_range_positive)}},
     [MAT_BLEND] =
         {.name = "blend",
          .feature = FEAT_BLEND,
@@ -69,23 +79,23 @@ static const struct material_kind_spec {
          .fields =
              {NUMBERS("albedo", 3, true, &range_unit),
               NUMBERS("albedo2", 3, true, &range_unit),
-              NUMBERS("size", 1, true, &range_positive)}},
+              NUMBERS("size", 1, true, &scene_range_positive)}},
 };
 
 #define N_MATERIAL_KINDS ((int)(sizeof material_kinds / sizeof material_kinds[0]))
 
 /* The shape's `material` field: its index, and the feature its kind needs. */
 bool
-use_material(struct parser *p, const struct token *kw, const struct fields *fs, int *out)
+scene_use_material(struct parser *p, const struct token *kw, const struct fields *fs, int *out)
 {
-    const struct token *name = &get(fs, "material")->val[0];
+    const struct token *name = &scene_get(fs, "material")->val[0];
     int i = find_material(p->scene, name);
     if (i < 0) {
         return unknown_material(p, name);
     }
     int feature = material_kinds[p->scene->materials[i].kind].feature;
     if (feature >= 0) {
-        use_feature(p, (enum feature)feature, kw);
+        scene_use_feature(p, (enum feature)feature, kw);
     }
     *out = i;
     return true;
@@ -103,20 +113,34 @@ check_material_name(struct parser *p, const struct token *t)
 {
     const char *rule = "expected a letter or '_', then letters, digits, '_' or '-'";
     if (t->kind != TOK_WORD) {
-        return fail(p, t, "expected a material name after 'material', got %s", show(t).s);
+        return scene_fail(
+            p,
+            t,
+            "expected a material name after 'material', got %s",
+            scene_show(t).s);
     }
     for (size_t i = 0; i < t->len; i++) {
         if (!is_name_char(t->text[i], i == 0)) {
-            return fail(p, t, "invalid material name %s (%s)", show(t).s, rule);
+            return scene_fail(p, t, "invalid material name %s (%s)", scene_show(t).s, rule);
         }
     }
     if (t->len > SCENE_MAX_NAME) {
-        return fail(p, t, "material name %s is longer than %d", show(t).s, SCENE_MAX_NAME);
+        return scene_fail(
+            p,
+            t,
+            "material name %s is longer than %d",
+            scene_show(t).s,
+            SCENE_MAX_NAME);
     }
     int first = find_material(p->scene, t);
     if (first >= 0) {
         int line = p->scene->materials[first].loc.line;
-        return fail(p, t, "duplicate material %s (first defined on line %d)", show(t).s, line);
+        return scene_fail(
+            p,
+            t,
+            "duplicate material %s (first defined on line %d)",
+            scene_show(t).s,
+            line);
     }
     return true;
 }
@@ -126,12 +150,12 @@ check_material_name(struct parser *p, const struct token *t)
 static bool
 check_blend(struct parser *p, const struct fields *fs)
 {
-    const struct field_value *albedo = get(fs, "albedo");
-    const struct field_value *refl = get(fs, "reflectance");
+    const struct field_value *albedo = scene_get(fs, "albedo");
+    const struct field_value *refl = scene_get(fs, "reflectance");
     for (int i = 0; i < 3; i++) {
         double sum = (double)albedo->num[i] + (double)refl->num[i];
         if (sum > 1) {
-            return fail(
+            return scene_fail(
                 p,
                 &refl->val[i],
                 "albedo + reflectance must be <= 1 per component, got %g",
@@ -151,52 +175,53 @@ add_material(
 {
     struct scene *s = p->scene;
     if (s->n_materials >= SCENE_MAX_MATERIALS) {
-        return fail(p, kw, "too many materials (at most %d)", SCENE_MAX_MATERIALS);
+        return scene_fail(p, kw, "too many materials (at most %d)", SCENE_MAX_MATERIALS);
     }
     if (kind == MAT_BLEND && !check_blend(p, fs)) {
         return false;
     }
     struct material *a =
-        grow(p, kw, s->materials, s->n_materials + 1, &p->cap.materials, sizeof *a);
+        scene_grow(p, kw, s->materials, s->n_materials + 1, &p->cap.materials, sizeof *a);
     if (!a) {
         return false;
     }
     s->materials = a;
     struct material *m = &a[s->n_materials++];
-    *m = (struct material){.kind = (enum material_kind)kind, .loc = loc_of(kw)};
+    *m = (struct material){.kind = (enum material_kind)kind, .loc = scene_loc_of(kw)};
     snprintf(m->name, sizeof m->name, "%.*s", (int)name->len, name->text);
-    m->albedo = get(fs, "albedo") ? vec_of(fs, "albedo") : vec3_splat(0);
-    m->albedo2 = get(fs, "albedo2") ? vec_of(fs, "albedo2") : vec3_splat(0);
-    m->reflectance = get(fs, "reflectance") ? vec_of(fs, "reflectance") : vec3_splat(0);
-    m->checker_size = get(fs, "size") ? get(fs, "size")->num[0] : 0;
-    m->ior = get(fs, "ior") ? get(fs, "ior")->num[0] : 0;
+    m->albedo = scene_get(fs, "albedo") ? scene_vec_of(fs, "albedo") : vec3_splat(0);
+    m->albedo2 = scene_get(fs, "albedo2") ? scene_vec_of(fs, "albedo2") : vec3_splat(0);
+    m->reflectance = scene_get(fs, "reflectance") ? scene_vec_of(fs, "reflectance") : vec3_splat(0);
+    m->checker_size = scene_get(fs, "size") ? scene_get(fs, "size")->num[0] : 0;
+    m->ior = scene_get(fs, "ior") ? scene_get(fs, "ior")->num[0] : 0;
     return true;
 }
 
 /* material NAME KIND fields...: the kind decides which fields follow. */
 bool
-parse_material(struct parser *p, const struct token *kw, struct fields *fs)
+scene_parse_material(struct parser *p, const struct token *kw, struct fields *fs)
 {
     struct token name, kind;
-    if (!next_token(p, &name) || !check_material_name(p, &name) || !next_token(p, &kind)) {
+    if (!scene_next_token(p, &name) || !check_material_name(p, &name)
+        || !scene_next_token(p, &kind)) {
         return false;
     }
     int k = 0;
-    while (k < N_MATERIAL_KINDS && !token_is(&kind, material_kinds[k].name)) {
+    while (k < N_MATERIAL_KINDS && !scene_token_is(&kind, material_kinds[k].name)) {
         k++;
     }
     if (k == N_MATERIAL_KINDS) {
         const char *kinds = "diffuse, mirror, glass, blend or checker";
-        return fail(
+        return scene_fail(
             p,
             &kind,
             "expected a material kind (%s) after %s, got %s",
             kinds,
-            show(&name).s,
-            show(&kind).s);
+            scene_show(&name).s,
+            scene_show(&kind).s);
     }
     fs->spec = material_kinds[k].fields;
     const char *kind_name = material_kinds[k].name;
-    snprintf(fs->context, sizeof fs->context, "%s material %s", kind_name, show(&name).s);
-    return read_fields(p, kw, fs) && add_material(p, kw, &name, k, fs);
+    snprintf(fs->context, sizeof fs->context, "%s material %s", kind_name, scene_show(&name).s);
+    return scene_read_fields(p, kw, fs) && add_material(p, kw, &name, k, fs);
 }

@@ -44,9 +44,9 @@ static bool
 make_transform(struct parser *p, const struct fields *fs, struct transform *xf)
 {
     *xf = (struct transform){.scale = {1, 1, 1}, .rotation = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
-    const struct field_value *scale = get(fs, "scale");
-    const struct field_value *rotate = get(fs, "rotate");
-    const struct field_value *translate = get(fs, "translate");
+    const struct field_value *scale = scene_get(fs, "scale");
+    const struct field_value *rotate = scene_get(fs, "rotate");
+    const struct field_value *translate = scene_get(fs, "translate");
     for (int i = 0; i < 3; i++) {
         xf->scale[i] = scale ? scale->num[scale->n == 1 ? 0 : i] : 1;
         xf->offset[i] = translate ? translate->num[i] : 0;
@@ -55,7 +55,7 @@ make_transform(struct parser *p, const struct fields *fs, struct transform *xf)
         double axis[3] = {rotate->num[0], rotate->num[1], rotate->num[2]};
         double len = sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
         if (!(len > 0) || !isfinite(len)) {
-            return fail(p, &rotate->key, "rotate axis must be non-zero");
+            return scene_fail(p, &rotate->key, "rotate axis must be non-zero");
         }
         rotation(axis, rotate->num[3], xf->rotation);
     }
@@ -122,10 +122,10 @@ append_emitter(
         .radiance = surface->emission,
         .triangle = true,
         .two_sided = surface->two_sided,
-        .loc = loc_of(at),
+        .loc = scene_loc_of(at),
     };
     real area = area_light_area(&light);
-    return !(area > 0) || !isfinite(area) || add_area_light(p, at, light);
+    return !(area > 0) || !isfinite(area) || scene_add_area_light(p, at, light);
 }
 
 /* The file's vertices, transformed, and its triangles: of `material`, or
@@ -140,7 +140,7 @@ append_mesh(
     const struct file_surface *surfaces)
 {
     struct scene *s = p->scene;
-    if (!room_for_mesh(p, at, mesh->n_vertices, mesh->n_triangles)) {
+    if (!scene_room_for_mesh(p, at, mesh->n_vertices, mesh->n_triangles)) {
         return false;
     }
     bool mirrored = xf->scale[0] * xf->scale[1] * xf->scale[2] < 0;
@@ -148,7 +148,7 @@ append_mesh(
     for (size_t i = 0; i < mesh->n_vertices; i++) {
         size_t v = (size_t)s->n_vertices + i;
         if (!transform_vertex(xf, mesh, i, &s->positions[v], &s->normals[v])) {
-            return fail(p, at, "mesh vertex %zu is not finite once transformed", i);
+            return scene_fail(p, at, "mesh vertex %zu is not finite once transformed", i);
         }
     }
     for (size_t i = 0; i < mesh->n_triangles; i++) {
@@ -165,7 +165,7 @@ append_mesh(
         for (int k = 0; k < 3; k++) {
             unsigned index = mesh->indices[3 * i + (size_t)k];
             if (index >= mesh->n_vertices) {
-                return fail(
+                return scene_fail(
                     p,
                     at,
                     "mesh triangle %zu uses vertex %u of %zu",
@@ -198,7 +198,7 @@ append_with_surfaces(
     const struct transform *xf)
 {
     struct file_surface *surfaces = NULL;
-    if (!map_file_materials(p, at, file, mesh, &surfaces)) {
+    if (!scene_map_file_materials(p, at, file, mesh, &surfaces)) {
         return false;
     }
     bool ok = append_mesh(p, at, mesh, xf, -1, surfaces);
@@ -207,7 +207,7 @@ append_with_surfaces(
 }
 
 bool
-append_file_mesh(
+scene_append_file_mesh(
     struct parser *p,
     const struct token *at,
     const char *file,
@@ -219,7 +219,7 @@ append_file_mesh(
     };
     bool ok = append_with_surfaces(p, at, file, mesh, &identity);
     if (ok) {
-        use_feature(p, FEAT_MESH, at);
+        scene_use_feature(p, FEAT_MESH, at);
     }
     return ok;
 }
@@ -238,12 +238,12 @@ mesh_path(struct parser *p, const struct token *t, char *name, char *path)
     }
     name[n] = '\0';
     if (n == 0) {
-        return fail(p, t, "expected a file name after 'file', got an empty string");
+        return scene_fail(p, t, "expected a file name after 'file', got an empty string");
     }
     const char *slash = strrchr(p->name, '/');
     int dir = name[0] == '/' || !slash ? 0 : (int)(slash - p->name + 1);
     if (n >= MAX_PATH_CHARS - 1 || (size_t)dir + n >= MAX_PATH_CHARS) {
-        return fail(p, t, "mesh path too long (at most %d bytes)", MAX_PATH_CHARS - 1);
+        return scene_fail(p, t, "mesh path too long (at most %d bytes)", MAX_PATH_CHARS - 1);
     }
     memcpy(path, p->name, (size_t)dir);
     memcpy(path + dir, name, n + 1);
@@ -263,7 +263,7 @@ note_input_file(struct parser *p, const struct token *t, const char *path)
     }
     if (!grown || !copy) {
         free(copy);
-        fail(p, t, "out of memory for the name of '%s'", path);
+        scene_fail(p, t, "out of memory for the name of '%s'", path);
         diag_mark_no_memory(p->err);
         return false;
     }
@@ -273,7 +273,7 @@ note_input_file(struct parser *p, const struct token *t, const char *path)
 }
 
 bool
-load_gltf_file(
+scene_load_gltf_file(
     struct parser *p,
     const struct token *t,
     const char *name,
@@ -287,19 +287,19 @@ load_gltf_file(
     // Opened here first, so that a missing file reads the same with or without glTF.
     FILE *f = fopen(path, "rb");
     if (!f) {
-        return fail(p, t, "%scannot open: %s", lead, strerror(errno));
+        return scene_fail(p, t, "%scannot open: %s", lead, strerror(errno));
     }
     fclose(f);
     if (!gltf_available()) {
         const char *how = "this build has no glTF support: install libtinygltf-dev and rebuild";
-        return fail(p, t, "%s%s", lead, how);
+        return scene_fail(p, t, "%s%s", lead, how);
     }
     struct diag gerr = {.line = 0};
     /* The mesh's own arrays count against what the scene has left; the
-     * scene's copy of them is counted again by grow(). */
+     * scene's copy of them is counted again by scene_grow(). */
     uint64_t left = p->max_bytes > p->bytes ? p->max_bytes - p->bytes : 0;
     if (!gltf_load_limited(path, left, out, &gerr)) {
-        fail(p, t, "%s%s", lead, gerr.msg);
+        scene_fail(p, t, "%s%s", lead, gerr.msg);
         if (gerr.kind == DIAG_NO_MEMORY) {
             diag_mark_no_memory(p->err);
         }
@@ -317,7 +317,7 @@ load_gltf_file(
     for (int i = 0; i < out->n_dropped; i++) {
         scene_add_note(
             p->scene,
-            loc_of(t),
+            scene_loc_of(t),
             "%s: %s",
             name    ? name
             : slash ? slash + 1
@@ -328,18 +328,19 @@ load_gltf_file(
 }
 
 bool
-build_mesh(struct parser *p, const struct token *kw, struct fields *fs)
+scene_build_mesh(struct parser *p, const struct token *kw, struct fields *fs)
 {
     int material = -1;
     struct transform xf;
-    bool own_materials = !get(fs, "material");
-    if ((!own_materials && !use_material(p, kw, fs, &material)) || !make_transform(p, fs, &xf)) {
+    bool own_materials = !scene_get(fs, "material");
+    if ((!own_materials && !scene_use_material(p, kw, fs, &material))
+        || !make_transform(p, fs, &xf)) {
         return false;
     }
-    const struct token *file = &get(fs, "file")->val[0];
+    const struct token *file = &scene_get(fs, "file")->val[0];
     char name[MAX_PATH_CHARS], path[MAX_PATH_CHARS];
     struct gltf_mesh mesh = {.n_vertices = 0};
-    if (!mesh_path(p, file, name, path) || !load_gltf_file(p, file, name, path, &mesh)) {
+    if (!mesh_path(p, file, name, path) || !scene_load_gltf_file(p, file, name, path, &mesh)) {
         return false;
     }
     if (mesh.n_lights > 0) {
@@ -347,7 +348,7 @@ build_mesh(struct parser *p, const struct token *kw, struct fields *fs)
          * scene (render FILE.glb) is lit by them. */
         scene_add_note(
             p->scene,
-            loc_of(file),
+            scene_loc_of(file),
             "%s: %zu KHR_lights_punctual light(s) not placed by a mesh line; ignored (render the "
             "file as the scene to light it by them)",
             name,
@@ -358,7 +359,7 @@ build_mesh(struct parser *p, const struct token *kw, struct fields *fs)
               && note_input_file(p, file, path);
     gltf_free(&mesh);
     if (ok) {
-        use_feature(p, FEAT_MESH, kw);
+        scene_use_feature(p, FEAT_MESH, kw);
     }
     return ok;
 }

@@ -6,7 +6,7 @@
  * statement's named fields are described by field_spec tables (the
  * statements' in scene.c, the material kinds' in scene_materials.c), read
  * into a struct fields, then handed to the statement's builder.  Every
- * function that can fail returns false after fail() has filled the diag.
+ * function that can fail returns false after scene_fail() has filled the diag.
  */
 #ifndef SCENE_PARSER_H
 #define SCENE_PARSER_H
@@ -91,23 +91,23 @@ struct parser {
 
 /* --- Errors and tokens (scene_lexer.c) ------------------------------------ */
 
-bool fail(struct parser *p, const struct token *at, const char *fmt, ...) DIAG_PRINTF(3, 4);
+bool scene_fail(struct parser *p, const struct token *at, const char *fmt, ...) DIAG_PRINTF(3, 4);
 
 /* A token as messages quote it: 'text' (cut when long) or "end of line".
- * Returned by value so that show(&t).s can be a fail() argument. */
+ * Returned by value so that scene_show(&t).s can be a scene_fail() argument. */
 struct shown {
     char s[MAX_SHOWN + 8];
 };
 
-struct shown show(const struct token *t);
-bool token_is(const struct token *t, const char *word);
-struct src_loc loc_of(const struct token *t);
+struct shown scene_show(const struct token *t);
+bool scene_token_is(const struct token *t, const char *word);
+struct src_loc scene_loc_of(const struct token *t);
 
 /* The next token: comments are skipped, each line ends with a TOK_EOL and
  * the text with a TOK_EOF (returned again by every later call). */
-bool next_token(struct parser *p, struct token *tok);
+bool scene_next_token(struct parser *p, struct token *tok);
 /* The next token, leaving the parser where it was. */
-bool peek_token(struct parser *p, struct token *tok);
+bool scene_peek_token(struct parser *p, struct token *tok);
 
 /* --- Fields (scene_fields.c) ---------------------------------------------- */
 
@@ -116,48 +116,50 @@ bool peek_token(struct parser *p, struct token *tok);
         .name = n, .kind = VAL_NUMBERS, .arity = count, .required = req, .range = limits \
     }
 
-extern const struct range range_positive; /* > 0 */
+extern const struct range scene_range_positive; /* > 0 */
 
 /* Named fields up to the end of the line, each at most once and its values
  * in range; then every required field must have been given. */
-bool read_fields(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_read_fields(struct parser *p, const struct token *kw, struct fields *fs);
 /* The field called name as given, or NULL when it was not. */
-const struct field_value *get(const struct fields *fs, const char *name);
+const struct field_value *scene_get(const struct fields *fs, const char *name);
 /* A given field of three numbers as a vec3. */
-vec3 vec_of(const struct fields *fs, const char *name);
+vec3 scene_vec_of(const struct fields *fs, const char *name);
 
 /* --- The scene's arrays (scene_store.c) ---------------------------------- */
 
 /* Record that the scene uses feature f, first at kw. */
-void use_feature(struct parser *p, enum feature f, const struct token *kw);
+void scene_use_feature(struct parser *p, enum feature f, const struct token *kw);
 /* Room for `need` items in an array of capacity *cap: the (possibly moved)
  * array, or NULL with the diag set (the old array is still owned by the
  * scene). */
-void *grow(struct parser *p, const struct token *at, void *items, int need, int *cap, size_t size);
+void *
+scene_grow(struct parser *p, const struct token *at, void *items, int need, int *cap, size_t size);
 /* Room for n more vertices and m more triangles. */
-bool room_for_mesh(struct parser *p, const struct token *at, size_t n, size_t m);
+bool scene_room_for_mesh(struct parser *p, const struct token *at, size_t n, size_t m);
 /* Append a light and record its feature. */
-bool add_point_light(struct parser *p, const struct token *kw, struct point_light light);
-bool add_area_light(struct parser *p, const struct token *kw, struct area_light light);
+bool scene_add_point_light(struct parser *p, const struct token *kw, struct point_light light);
+bool scene_add_area_light(struct parser *p, const struct token *kw, struct area_light light);
 
 /* --- Building the scene (scene_build.c, scene_materials.c, scene_mesh.c) -- */
 
 /* The shape's `material` field: its index, and the feature its kind needs. */
-bool use_material(struct parser *p, const struct token *kw, const struct fields *fs, int *out);
+bool
+scene_use_material(struct parser *p, const struct token *kw, const struct fields *fs, int *out);
 
 /* The statements' builders: kw is the keyword, fs the fields read for it
- * (parse_material reads its own, since its kind decides which follow). */
-bool parse_material(struct parser *p, const struct token *kw, struct fields *fs);
-bool build_camera(struct parser *p, const struct token *kw, struct fields *fs);
-bool build_image(struct parser *p, const struct token *kw, struct fields *fs);
-bool build_color(struct parser *p, const struct token *kw, struct fields *fs);
-bool build_sphere(struct parser *p, const struct token *kw, struct fields *fs);
-bool build_quad(struct parser *p, const struct token *kw, struct fields *fs);
-bool build_triangle(struct parser *p, const struct token *kw, struct fields *fs);
-bool build_mesh(struct parser *p, const struct token *kw, struct fields *fs);
-bool build_point_light(struct parser *p, const struct token *kw, struct fields *fs);
-bool build_area_light(struct parser *p, const struct token *kw, struct fields *fs);
-bool build_sphere_light(struct parser *p, const struct token *kw, struct fields *fs);
+ * (scene_parse_material reads its own, since its kind decides which follow). */
+bool scene_parse_material(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_build_camera(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_build_image(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_build_color(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_build_sphere(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_build_quad(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_build_triangle(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_build_mesh(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_build_point_light(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_build_area_light(struct parser *p, const struct token *kw, struct fields *fs);
+bool scene_build_sphere_light(struct parser *p, const struct token *kw, struct fields *fs);
 
 /* --- glTF files (scene_gltf.c, scene_mesh.c, scene_gltf_file.c) ----------- */
 
@@ -178,7 +180,7 @@ void scene_add_note(struct scene *s, struct src_loc at, const char *fmt, ...) DI
  * emitters, and note what they drop (one note per kind).  *out gets one
  * entry per glTF material and one more, last, for glTF's default material
  * (free it). */
-bool map_file_materials(
+bool scene_map_file_materials(
     struct parser *p,
     const struct token *at,
     const char *file,
@@ -189,7 +191,7 @@ bool map_file_materials(
  * 'NAME': ..."; NULL when the file is the scene itself, which the message's
  * location already names) into *out; the files the load read besides it
  * (external buffers, images) join the scene's input_files. */
-bool load_gltf_file(
+bool scene_load_gltf_file(
     struct parser *p,
     const struct token *at,
     const char *name,
@@ -198,7 +200,7 @@ bool load_gltf_file(
 
 /* Append a loaded file as it stands (no transform) with its own
  * materials and emitters. */
-bool append_file_mesh(
+bool scene_append_file_mesh(
     struct parser *p,
     const struct token *at,
     const char *file,

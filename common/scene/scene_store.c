@@ -13,11 +13,11 @@
 #include <stdlib.h>
 
 void
-use_feature(struct parser *p, enum feature f, const struct token *kw)
+scene_use_feature(struct parser *p, enum feature f, const struct token *kw)
 {
     if (!(p->scene->features & FEATURE_BIT(f))) {
         p->scene->features |= FEATURE_BIT(f);
-        p->scene->feature_loc[f] = loc_of(kw);
+        p->scene->feature_loc[f] = scene_loc_of(kw);
     }
 }
 
@@ -29,7 +29,7 @@ use_feature(struct parser *p, enum feature f, const struct token *kw)
  * items needed must fit in it, and the doubled capacity is cut to what
  * fits, so the limit is never passed, not even by the last doubling. */
 void *
-grow(struct parser *p, const struct token *at, void *items, int need, int *cap, size_t size)
+scene_grow(struct parser *p, const struct token *at, void *items, int need, int *cap, size_t size)
 {
     if (need <= *cap) {
         return items;
@@ -37,7 +37,7 @@ grow(struct parser *p, const struct token *at, void *items, int need, int *cap, 
     uint64_t others = p->bytes - (uint64_t)*cap * size;
     uint64_t room = p->max_bytes > others ? (p->max_bytes - others) / size : 0;
     if ((uint64_t)need > room) {
-        fail(
+        scene_fail(
             p,
             at,
             "the scene needs more than the memory limit of %llu MiB for its elements "
@@ -59,7 +59,7 @@ grow(struct parser *p, const struct token *at, void *items, int need, int *cap, 
         grown = realloc(items, (size_t)new_cap * size);
     }
     if (!grown) {
-        fail(
+        scene_fail(
             p,
             at,
             "out of memory: the system refused %llu MiB for the scene's elements (within the "
@@ -76,24 +76,30 @@ grow(struct parser *p, const struct token *at, void *items, int need, int *cap, 
 
 /* Room for n more vertices and m more triangles. */
 bool
-room_for_mesh(struct parser *p, const struct token *at, size_t n, size_t m)
+scene_room_for_mesh(struct parser *p, const struct token *at, size_t n, size_t m)
 {
     struct scene *s = p->scene;
     if (n > (size_t)(INT_MAX - s->n_vertices) || m > (size_t)(INT_MAX - s->n_triangles)) {
-        return fail(p, at, "too many vertices or triangles in the scene (at most %d)", INT_MAX);
+        return scene_fail(
+            p,
+            at,
+            "too many vertices or triangles in the scene (at most %d)",
+            INT_MAX);
     }
-    vec3 *pos = grow(p, at, s->positions, s->n_vertices + (int)n, &p->cap.positions, sizeof *pos);
+    vec3 *pos =
+        scene_grow(p, at, s->positions, s->n_vertices + (int)n, &p->cap.positions, sizeof *pos);
     if (!pos) {
         return false;
     }
     s->positions = pos;
-    vec3 *nrm = grow(p, at, s->normals, s->n_vertices + (int)n, &p->cap.normals, sizeof *nrm);
+    vec3 *nrm = scene_grow(p, at, s->normals, s->n_vertices + (int)n, &p->cap.normals, sizeof *nrm);
     if (!nrm) {
         return false;
     }
     s->normals = nrm;
     int triangles = s->n_triangles + (int)m;
-    struct triangle *tri = grow(p, at, s->triangles, triangles, &p->cap.triangles, sizeof *tri);
+    struct triangle *tri =
+        scene_grow(p, at, s->triangles, triangles, &p->cap.triangles, sizeof *tri);
     if (!tri) {
         return false;
     }
@@ -102,32 +108,32 @@ room_for_mesh(struct parser *p, const struct token *at, size_t n, size_t m)
 }
 
 bool
-add_point_light(struct parser *p, const struct token *kw, struct point_light light)
+scene_add_point_light(struct parser *p, const struct token *kw, struct point_light light)
 {
     struct scene *s = p->scene;
     int n = s->n_point_lights;
-    struct point_light *a = grow(p, kw, s->point_lights, n + 1, &p->cap.points, sizeof *a);
+    struct point_light *a = scene_grow(p, kw, s->point_lights, n + 1, &p->cap.points, sizeof *a);
     if (!a) {
         return false;
     }
     s->point_lights = a;
     a[s->n_point_lights++] = light;
-    use_feature(p, FEAT_POINT_LIGHT, kw);
+    scene_use_feature(p, FEAT_POINT_LIGHT, kw);
     return true;
 }
 
 bool
-add_area_light(struct parser *p, const struct token *kw, struct area_light light)
+scene_add_area_light(struct parser *p, const struct token *kw, struct area_light light)
 {
     struct scene *s = p->scene;
     int n = s->n_area_lights;
-    struct area_light *a = grow(p, kw, s->area_lights, n + 1, &p->cap.areas, sizeof *a);
+    struct area_light *a = scene_grow(p, kw, s->area_lights, n + 1, &p->cap.areas, sizeof *a);
     if (!a) {
         return false;
     }
     s->area_lights = a;
     a[s->n_area_lights++] = light;
-    use_feature(p, FEAT_AREA_LIGHT, kw);
+    scene_use_feature(p, FEAT_AREA_LIGHT, kw);
     return true;
 }
 
