@@ -4,7 +4,7 @@
  * scene and say what the stage does not model, run the tile driver, write
  * the image and the statistics, and choose the exit status (CONTRACT.md).
  *
- * This is main()'s plumbing, shared by the seven stages: it prints the
+ * This is main()'s plumbing, shared by every stage: it prints the
  * diagnostics (stderr) but never exits.  Every step returns false (or a
  * status), and main() returns the status, so a stage's main.c holds only
  * its options and its render call.
