@@ -40,7 +40,15 @@ ifeq ($(WERROR),1)
 WARN += -Werror
 endif
 
-BASE_CPPFLAGS := -D_POSIX_C_SOURCE=200809L -I$(ROOT)/common
+# common/ in layers, each using only those before it (tests/common/
+# layers.sh): core (vectors, random numbers, diagnostics, counters, atomic
+# files), image (the image and its formats), gltf (tinygltf behind a C API),
+# scene (the model, then the loader), inspect (the path recorder), render
+# (tiles on threads, stop signals, AOV passes), app (command line, run,
+# outputs).  Each folder is on the include path: a file names a header, not
+# its folder.
+COMMON_LAYERS := core image gltf scene inspect render app
+BASE_CPPFLAGS := -D_POSIX_C_SOURCE=200809L $(COMMON_LAYERS:%=-I$(ROOT)/common/%)
 
 REAL ?= double
 VARIANT :=

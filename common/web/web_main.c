@@ -41,7 +41,7 @@ web_set_share(int part, int parts)
 {
     image_free(&web_rendered);
     web_share = (struct render_share){.part = part, .parts = parts, .on_pass = post_pass};
-    render_set_share(&web_share);
+    driver_set_share(&web_share);
 }
 
 /* The floats of a width x height image the page fills in; the runs that
@@ -58,7 +58,7 @@ web_use_rendered(int width, int height)
         return NULL;
     }
     web_share = (struct render_share){.part = 0, .parts = 1, .rendered = &web_rendered};
-    render_set_share(&web_share);
+    driver_set_share(&web_share);
     return web_rendered.rgb;
 }
 

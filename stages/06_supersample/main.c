@@ -156,14 +156,14 @@ main(int argc, char **argv)
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
     renderer.shadow.picker = &picker;
-    double start = clock_seconds(); /* the tree, unless --no-bvh; its size in --stats */
+    double start = stats_clock_seconds(); /* the tree, unless --no-bvh; its size in --stats */
     if (use_bvh && !bvh_build(&renderer.world.bvh, &renderer.world, &err)) {
         light_picker_free(&picker);
         return run_fail(&run, &err, EXIT_RESOURCES);
     }
-    run.rep.seconds_build = use_bvh ? clock_seconds() - start : 0;
-    report_set(&run.rep, "bvh_nodes", renderer.world.bvh.n_nodes, true);
-    report_set(&run.rep, "bvh_aside", renderer.world.bvh.n_aside, true);
+    run.rep.seconds_build = use_bvh ? stats_clock_seconds() - start : 0;
+    stats_report_set(&run.rep, "bvh_nodes", renderer.world.bvh.n_nodes, true);
+    stats_report_set(&run.rep, "bvh_aside", renderer.world.bvh.n_aside, true);
     int status = render(&renderer, &run);
     light_picker_free(&picker);
     bvh_free(&renderer.world.bvh);

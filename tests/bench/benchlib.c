@@ -70,11 +70,11 @@ bench_load(struct bench_model *m, const char *path, struct diag *err)
         diag_set(err, path, 0, 0, "path too long");
         return false;
     }
-    double start = clock_seconds();
+    double start = stats_clock_seconds();
     if (!scene_load_string(text, (size_t)len, "bench.scene", &m->scene, err)) {
         return false;
     }
-    m->seconds_load = clock_seconds() - start;
+    m->seconds_load = stats_clock_seconds() - start;
     frame(m);
     return true;
 }
@@ -117,7 +117,7 @@ bench_generate_sphere(struct bench_model *m, int n_bands, struct diag *err)
     *m = (struct bench_model){.seconds_load = 0};
     snprintf(m->name, sizeof m->name, "sphere (generated)");
     const double center[3] = {0, 0, 0};
-    double start = clock_seconds();
+    double start = stats_clock_seconds();
     struct meshgen_mesh mesh = meshgen_sphere(n_bands + 1, 2 * n_bands, 1, center, 0, 1);
     bool ok = mesh.n_triangles > 0 && scene_from_mesh(&m->scene, &mesh);
     meshgen_free(&mesh);
@@ -126,7 +126,7 @@ bench_generate_sphere(struct bench_model *m, int n_bands, struct diag *err)
         scene_free(&m->scene);
         return false;
     }
-    m->seconds_load = clock_seconds() - start;
+    m->seconds_load = stats_clock_seconds() - start;
     frame(m);
     return true;
 }
@@ -137,11 +137,11 @@ bench_build(struct bench_model *m, struct diag *err)
     m->seconds_build = 0;
     for (int run = 0; run < BENCH_RUNS; run++) {
         bvh_free(&m->world.bvh);
-        double start = clock_seconds();
+        double start = stats_clock_seconds();
         if (!bvh_build(&m->world.bvh, &m->world, err)) {
             return false;
         }
-        double seconds = clock_seconds() - start;
+        double seconds = stats_clock_seconds() - start;
         if (run == 0 || seconds < m->seconds_build) {
             m->seconds_build = seconds;
         }
@@ -273,7 +273,7 @@ run_once(struct timing *t, struct worker *workers, int threads, struct bench_res
 {
     atomic_store(&t->next_chunk, 0);
     int started = 1;
-    double start = clock_seconds();
+    double start = stats_clock_seconds();
     for (int i = 0; i < threads; i++) {
         workers[i] = (struct worker){.timing = t};
     }
@@ -286,7 +286,7 @@ run_once(struct timing *t, struct worker *workers, int threads, struct bench_res
     for (int i = 1; i < started; i++) {
         pthread_join(workers[i].thread, NULL);
     }
-    *out = (struct bench_result){.seconds = clock_seconds() - start, .rays = t->n};
+    *out = (struct bench_result){.seconds = stats_clock_seconds() - start, .rays = t->n};
     for (int i = 0; i < threads; i++) {
         out->hits += workers[i].hits;
         stats_add(&out->counts, &workers[i].counts);

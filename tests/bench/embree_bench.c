@@ -78,9 +78,9 @@ embree_build(struct embree *e, const struct scene *s, int threads)
     if (!e->scene || !add_triangles(e->device, e->scene, s)) {
         return false;
     }
-    double start = clock_seconds();
+    double start = stats_clock_seconds();
     rtcCommitScene(e->scene);
-    e->seconds_build = clock_seconds() - start;
+    e->seconds_build = stats_clock_seconds() - start;
     return rtcGetDeviceError(e->device) == RTC_ERROR_NONE;
 }
 

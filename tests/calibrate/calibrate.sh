@@ -284,7 +284,7 @@ count1() { awk '$1 == 1 { n++ } END { print n + 0 }' "$1"; }
 # counted.  (The compiler is not in the key: CI and a course's machines
 # build with Debian's gcc.)
 ledger=$out/grade-auto.sets
-source_sum=$(cd "$root" && cat stages/07_pathtrace/*.[ch] common/*.[ch] tests/tools/compare.c \
+source_sum=$(cd "$root" && cat stages/07_pathtrace/*.[ch] $(find common -name "*.[ch]" | sort) tests/tools/compare.c \
     tests/lib/*.[ch] tests/lab/lablib.sh tests/calibrate/calibrate.sh | cksum | cut -d' ' -f1)
 # ledger_key SCENE
 ledger_key() {

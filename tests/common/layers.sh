@@ -1,21 +1,22 @@
 #!/bin/sh
-# layers.sh [LIBCOMMON] - common/ has no circles: no file of common/ calls,
-# through others, back into itself, and no header includes itself through
-# others.  The files are layers, data below and dispatch above (image.c
-# below the encoders below image_write.c; scene_lexer.c, scene_fields.c and
-# scene_store.c below the builders below scene.c; the glTF steps below
-# gltf_shim.cc).
+# layers.sh [LIBCOMMON] - common/ is layers: its folders (common/config.mk's
+# COMMON_LAYERS, in order: core image gltf scene inspect render app) each
+# use only themselves and the folders before them, no file calls or
+# includes back into itself through others, nothing but the build files
+# sits at common/'s top, and no file is over 450 lines.
 #
 #   calls     file A -> file B when A's object uses a symbol B's object
 #             defines (nm on LIBCOMMON, by default the newest
 #             build/**/common/libcommon.a; built with make when none is)
 #   includes  file A -> header B when A has #include "B" and B is in common/
 #
-# Prints one line per graph ("ok   layers/calls: N files, N edges, no
-# cycle", or FAIL with the cycle's files) and "N passed, N failed, N
-# skipped".  Exit status: 0 both acyclic, 1 a cycle or no library.
+# Prints one line per check ("ok   layers/calls: N files, N edges, no
+# cycle"; "ok   layers/folders: ..."; or FAIL with the cycle's files or the
+# edge that goes up a layer) and "N passed, N failed, N skipped".
+# Exit status: 0 all hold, 1 one does not or no library.
 set -u
 root=$(cd "$(dirname "$0")/../.." && pwd)
+trap 'rm -f "${TMPDIR:-/tmp}/layers.$$".*' EXIT
 lib=${1:-}
 if [ -z "$lib" ]; then
     lib=$(ls -t "$root"/build/common/libcommon.a "$root"/build/*/common/libcommon.a 2>/dev/null | head -n 1)
@@ -71,20 +72,72 @@ if [ -f "$lib" ] && nm -A "$lib" >/dev/null 2>&1; then
         { k = split($1, at, ":"); f = at[k - 1]; sub(/\.o$/, "", f) }
         NF == 3 && $2 ~ /^[TDRBC]$/ { def[$3] = f }
         NF == 3 && $2 == "U" { n++; user[n] = f; sym[n] = $3 }
-        END { for (i = 1; i <= n; i++) if (sym[i] in def) print user[i], def[sym[i]] }' |
-        cycles calls
+        END { for (i = 1; i <= n; i++) if (sym[i] in def) print user[i], def[sym[i]] }' \
+        >"${TMPDIR:-/tmp}/layers.$$.calls"
+    cycles calls <"${TMPDIR:-/tmp}/layers.$$.calls"
     count $?
 else
     echo "FAIL layers/calls: no library to read ($lib; nm is binutils')"
     count 1
 fi
 
-for f in "$root"/common/*.c "$root"/common/*.cc "$root"/common/*.h; do
-    sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f" | while read -r inc; do
-        [ -f "$root/common/$inc" ] && echo "$(basename "$f") $inc"
+layers=$(sed -n 's/^COMMON_LAYERS := //p' "$root/common/config.mk")
+# folder_of NAME: the layer folder that holds common/*/NAME ("" if none).
+folder_of() {
+    for fo_d in $layers; do
+        [ -f "$root/common/$fo_d/$1" ] && { echo "$fo_d"; return; }
     done
-done | cycles includes
+}
+# The include edges, "A B" by file name.
+for d in $layers; do
+    for f in "$root/common/$d"/*; do
+        sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f" | while read -r inc; do
+            [ -n "$(folder_of "$inc")" ] && echo "$(basename "$f") $inc"
+        done
+    done
+done >"${TMPDIR:-/tmp}/layers.$$.includes"
+cycles includes <"${TMPDIR:-/tmp}/layers.$$.includes"
 count $?
+
+# Every edge, calls and includes, goes to the same folder or one before it.
+{
+    cat "${TMPDIR:-/tmp}/layers.$$.includes"
+    [ ! -f "${TMPDIR:-/tmp}/layers.$$.calls" ] || cat "${TMPDIR:-/tmp}/layers.$$.calls"
+} | awk -v layers="$layers" -v files="$(for d in $layers; do for f in "$root/common/$d"/*; do
+        printf '%s %s\n' "$(basename "$f")" "$d"; done; done)" '
+    BEGIN {
+        n = split(layers, l, " "); for (i = 1; i <= n; i++) rank[l[i]] = i
+        m = split(files, fl, "\n"); for (i = 1; i <= m; i++) { split(fl[i], w, " "); dir[w[1]] = w[2] }
+    }
+    {
+        a = dir[$1]; b = dir[$2]
+        if (a == "" || b == "") { a = a == "" ? dir[$1 ".c"] dir[$1 ".cc"] : a; b = b == "" ? dir[$2 ".c"] dir[$2 ".cc"] : b }
+        edges++
+        if (rank[b] > rank[a]) { printf "FAIL layers/folders: %s/%s -> %s/%s: %s is below %s\n", a, $1, b, $2, a, b; bad = 1 }
+    }
+    END { if (!bad) printf "ok   layers/folders: %d folders, %d edges, none up a layer\n", n, edges; exit bad }'
+count $?
+
+# Nothing at common/'s top but its build files (and the browser build).
+top=$(cd "$root/common" && ls | grep -v -x -e Makefile -e config.mk -e stage.mk -e web $(for d in $layers; do printf -- '-e %s ' "$d"; done) | tr '\n' ' ')
+if [ -z "$top" ]; then
+    echo "ok   layers/top: common/ holds its build files and $(echo "$layers" | wc -w) layer folders"
+    count 0
+else
+    echo "FAIL layers/top: files at common/'s top, outside its layers: $top"
+    count 1
+fi
+
+# No file of a layer over 450 lines: a file is read in one sitting.
+long=$(for d in $layers; do wc -l "$root/common/$d"/* | awk -v d="$d" '$2 != "total" && $1 > 450 {
+    n = split($2, p, "/"); printf "%s/%s (%d lines) ", d, p[n], $1 }'; done)
+if [ -z "$long" ]; then
+    echo "ok   layers/size: no file of common/'s layers over 450 lines"
+    count 0
+else
+    echo "FAIL layers/size: over 450 lines: $long"
+    count 1
+fi
 
 echo "$passed passed, $failed failed, 0 skipped"
 [ "$failed" -eq 0 ]

@@ -133,7 +133,7 @@ TEST(png_reader_reads_back_what_the_writer_wrote)
     CHECK(back.width == 37 && back.height == 11);
     int wrong = 0;
     for (size_t i = 0; back.rgb && i < 37 * 11 * 3; i++) {
-        wrong += srgb_encode8(back.rgb[i]) != srgb_encode8(img.rgb[i]);
+        wrong += image_srgb_encode8(back.rgb[i]) != image_srgb_encode8(img.rgb[i]);
     }
     CHECK_MSG(wrong == 0, "%d samples differ", wrong);
     image_free(&img);
@@ -150,9 +150,9 @@ TEST(png_reader_reads_other_encoders_files)
     for (int y = 0; img.rgb && y < 16; y++) {
         for (int x = 0; x < 16; x++) {
             const float *p = image_pixel(&img, x, y);
-            CHECK_NEAR(p[0], linear_from_srgb((4096.0f * x + 17) / 65535), 1e-6);
-            CHECK_NEAR(p[1], linear_from_srgb((4096.0f * y + 33) / 65535), 1e-6);
-            CHECK_NEAR(p[2], linear_from_srgb((65535 - 4096.0f * x) / 65535), 1e-6);
+            CHECK_NEAR(p[0], image_linear_from_srgb((4096.0f * x + 17) / 65535), 1e-6);
+            CHECK_NEAR(p[1], image_linear_from_srgb((4096.0f * y + 33) / 65535), 1e-6);
+            CHECK_NEAR(p[2], image_linear_from_srgb((65535 - 4096.0f * x) / 65535), 1e-6);
         }
     }
     image_free(&img);
@@ -164,7 +164,7 @@ TEST(png_reader_reads_other_encoders_files)
             for (int c = 0; c < 3; c++) {
                 CHECK_NEAR(
                     image_pixel(&img, x, y)[c],
-                    linear_from_srgb(palette[(x + y) % 4][c]),
+                    image_linear_from_srgb(palette[(x + y) % 4][c]),
                     1e-6);
             }
         }
@@ -173,7 +173,7 @@ TEST(png_reader_reads_other_encoders_files)
     CHECK(imgread(test_root_path("tests/common/data/grey_alpha_sub.png"), &img, &err));
     for (int y = 0; img.rgb && y < 16; y++) {
         for (int x = 0; x < 16; x++) {
-            float grey = linear_from_srgb((16.0f * x + y) / 255);
+            float grey = image_linear_from_srgb((16.0f * x + y) / 255);
             const float *p = image_pixel(&img, x, y);
             CHECK(p[0] == grey && p[1] == grey && p[2] == grey);
         }
@@ -210,7 +210,7 @@ fix_idat_crc(unsigned char *png, size_t n)
             return;
         }
         if (memcmp(png + i + 4, "IDAT", 4) == 0) {
-            uint32_t crc = png_crc32(0, png + i + 4, len + 4);
+            uint32_t crc = image_crc32(0, png + i + 4, len + 4);
             for (int b = 0; b < 4; b++) {
                 png[i + 8 + len + (size_t)b] = (unsigned char)(crc >> (24 - 8 * b));
             }
@@ -461,10 +461,14 @@ TEST(power_line_says_what_a_comparison_can_find)
         }
     }
     /* -q: the verdict, then the same line unwrapped. */
-    const char *const quiet[] = {"-q", TMP("a.pfm"), "--variance", TMP("var.pfm"), TMP("ref.pfm"), NULL};
+    const char *const quiet[] =
+        {"-q", TMP("a.pfm"), "--variance", TMP("var.pfm"), TMP("ref.pfm"), NULL};
     CHECK(compare(quiet, out) == 0);
     const char *second = strchr(out, '\n');
-    CHECK_MSG(second && strncmp(second + 1, "power: ", 7) == 0 && strstr(second + 1, line), "%s", out);
+    CHECK_MSG(
+        second && strncmp(second + 1, "power: ", 7) == 0 && strstr(second + 1, line),
+        "%s",
+        out);
     /* With no noise estimate there is no test, and no power line. */
     const char *const alone[] = {TMP("a.pfm"), TMP("ref.pfm"), NULL};
     CHECK(compare(alone, out) == 0 && !strstr(out, "power "));
@@ -524,8 +528,8 @@ TEST(mask_smooth_leaves_edges_out)
     if (map.rgb) { /* the edge and the border are grey: not compared */
         const float *edge = image_pixel(&map, 30 * scale + scale / 2, 20 * scale);
         const float *border = image_pixel(&map, scale / 2, scale / 2);
-        CHECK(srgb_encode8(edge[0]) == 120 && srgb_encode8(edge[1]) == 120);
-        CHECK(srgb_encode8(border[2]) == 120);
+        CHECK(image_srgb_encode8(edge[0]) == 120 && image_srgb_encode8(edge[1]) == 120);
+        CHECK(image_srgb_encode8(border[2]) == 120);
     }
     image_free(&map);
     const char *const pair[] =
@@ -598,15 +602,19 @@ TEST(verdict_lines_are_plain_words_and_numbers)
     int percent = 0, end = 0;
     CHECK_MSG(
         line
-            && sscanf(line, "y 16-31 is %d%% brighter than the reference (channel %n", &percent, &end)
+            && sscanf(
+                   line,
+                   "y 16-31 is %d%% brighter than the reference (channel %n",
+                   &percent,
+                   &end)
                    == 1
             && end > 0 && percent > 1300 && percent < 1500,
         "%s",
         out);
     CHECK_MSG(
-        status == 1
-            && strstr(out, " standard errors") && !strstr(out, "e+") && !strstr(out, "(blue)")
-            && !strstr(out, "(red)") && !strstr(out, "(green)") && !strstr(out, "hint"),
+        status == 1 && strstr(out, " standard errors") && !strstr(out, "e+")
+            && !strstr(out, "(blue)") && !strstr(out, "(red)") && !strstr(out, "(green)")
+            && !strstr(out, "hint"),
         "%s",
         out);
     CHECK(write_set(83, 84, 1, 1, 0.5)); /* 50% darker */
@@ -649,7 +657,7 @@ map_rgb(const struct image *map, int scale, int x, int y, int rgb[3])
 {
     const float *p = image_pixel(map, x * scale + scale / 2, y * scale + scale / 2);
     for (int c = 0; c < 3; c++) {
-        rgb[c] = srgb_encode8(p[c]);
+        rgb[c] = image_srgb_encode8(p[c]);
     }
 }
 
@@ -902,8 +910,15 @@ TEST(outputs_that_are_inputs_or_each_other_are_refused)
         {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), "--map", TMP("ref.pfm"), NULL};
     const char *const html_render[] =
         {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), "--html", TMP("b.pfm"), NULL};
-    const char *const both[] =
-        {TMP("a.pfm"), TMP("b.pfm"), TMP("ref.pfm"), "--map", TMP("map.png"), "--html", dotted, NULL};
+    const char *const both[] = {
+        TMP("a.pfm"),
+        TMP("b.pfm"),
+        TMP("ref.pfm"),
+        "--map",
+        TMP("map.png"),
+        "--html",
+        dotted,
+        NULL};
     const char *const variance[] =
         {TMP("a.pfm"), "--variance", TMP("b.pfm"), TMP("ref.pfm"), "--map", TMP("b.pfm"), NULL};
     const char *const regions[] = {

@@ -4,7 +4,7 @@
  * The map of the code names files; when a file moves, the map must move
  * with it.  Every `code` span that looks like a file name, and every link
  * target, must name a file or directory of the project:
- *   - with a '/', relative to the project root (`common/scene.c`), or for a
+ *   - with a '/', relative to the project root (`common/scene/scene.c`), or for a
  *     link, relative to docs/ (`stages/05_bvh.md`); NN_name stands for any
  *     stage (`stages/NN_name/render.c`: at least one stage has it);
  *   - without one (`render.c`), in common/, in some stage or at the root.
@@ -114,6 +114,27 @@ exists_in_some_stage(const char *name, bool bare)
     return found;
 }
 
+/* A bare name of common/: in one of its layer folders (common/core/, ...). */
+static bool
+exists_in_common(const char *name)
+{
+    DIR *d = opendir(test_root_path("common"));
+    bool found = false;
+    struct dirent *e;
+    while (d && !found && (e = readdir(d)) != NULL) {
+        if (e->d_name[0] == '.') {
+            continue;
+        }
+        char dir[MAX_NAME];
+        snprintf(dir, sizeof dir, "common/%s", e->d_name);
+        found = exists_in(dir, name);
+    }
+    if (d) {
+        closedir(d);
+    }
+    return found;
+}
+
 static bool
 file_exists(const char *name, const char *link_dir)
 {
@@ -126,7 +147,8 @@ file_exists(const char *name, const char *link_dir)
     if (strchr(name, '/')) {
         return exists_in("", name);
     }
-    return exists_in("common", name) || exists_in("", name) || exists_in_some_stage(name, true);
+    return exists_in("common", name) || exists_in_common(name) || exists_in("", name)
+           || exists_in_some_stage(name, true);
 }
 
 /* Checks one candidate; counts it in *checked and returns 1 when missing. */
@@ -210,7 +232,7 @@ TEST(architecture_names_only_existing_files)
 TEST(a_missing_name_is_found)
 {
     const char *text = "```\n`common/in_a_fence.c`\n```\n"
-                       "`common/scene.c` and `scene_load()` and `common/no_such_file.c`,\n"
+                       "`common/scene/scene.c` and `scene_load()` and `common/no_such_file.c`,\n"
                        "`render.c`, `not_a_stage_file.c`, `stages/NN_name/render.c`,\n"
                        "`stages/NN_name/nothing.c`, [the BVH](stages/05_bvh.md#lab) and\n"
                        "[gone](stages/99_none.md), [site](https://example.org/x.md).\n";

@@ -52,8 +52,8 @@ TEST(every_pixel_once_and_thread_independent)
     struct diag err;
     struct render_job j1 = job_for(noisy_pixel, 1, 3);
     struct render_job j4 = job_for(noisy_pixel, 4, 3);
-    CHECK(render_image(&j1, &one, &r1, &err));
-    CHECK(render_image(&j4, &four, &r4, &err));
+    CHECK(driver_render_image(&j1, &one, &r1, &err));
+    CHECK(driver_render_image(&j4, &four, &r4, &err));
     CHECK(memcmp(one.rgb, four.rgb, sizeof(float) * 3 * 37 * 21) == 0);
     CHECK(r1.passes_done == 3 && r4.passes_done == 3);
     CHECK(r1.counts.rays_camera == 3 * 37 * 21 && r4.counts.rays_camera == 3 * 37 * 21);
@@ -71,7 +71,7 @@ TEST(nan_pixels_are_counted_and_zeroed)
     struct render_result r;
     struct diag err;
     struct render_job j = job_for(nan_pixel, 2, 2);
-    CHECK(render_image(&j, &img, &r, &err));
+    CHECK(driver_render_image(&j, &img, &r, &err));
     CHECK(r.nan_pixels == 1);
     CHECK(image_pixel(&img, 3, 5)[0] == 0);
     CHECK(image_pixel(&img, 3, 5)[1] == 0); /* the whole estimate is dropped */
@@ -86,9 +86,9 @@ TEST(seed_changes_the_image)
     struct render_result r;
     struct diag err;
     struct render_job j = job_for(noisy_pixel, 2, 1);
-    CHECK(render_image(&j, &a, &r, &err));
+    CHECK(driver_render_image(&j, &a, &r, &err));
     j.seed = 4;
-    CHECK(render_image(&j, &b, &r, &err));
+    CHECK(driver_render_image(&j, &b, &r, &err));
     CHECK(memcmp(a.rgb, b.rgb, sizeof(float) * 3 * 37 * 21) != 0);
     image_free(&a);
     image_free(&b);
@@ -110,20 +110,24 @@ log_pass(void *ctx, const struct image *mean, int passes_done)
 
 TEST(shares_add_up_to_the_image)
 {
-    enum { PARTS = 3, FLOATS = 3 * 37 * 21 };
+    enum {
+        PARTS = 3,
+        FLOATS = 3 * 37 * 21
+    };
     struct image whole = {0};
     struct render_result r;
     struct diag err;
     struct render_job j = job_for(noisy_pixel, 2, 4);
-    CHECK(render_image(&j, &whole, &r, &err));
+    CHECK(driver_render_image(&j, &whole, &r, &err));
     static float sum[FLOATS];
     uint64_t rays = 0;
     for (int part = 0; part < PARTS; part++) {
         struct pass_log log = {0};
-        struct render_share share = {.part = part, .parts = PARTS, .on_pass = log_pass, .ctx = &log};
+        struct render_share share =
+            {.part = part, .parts = PARTS, .on_pass = log_pass, .ctx = &log};
         struct image img = {0};
-        render_set_share(&share);
-        CHECK(render_image(&j, &img, &r, &err));
+        driver_set_share(&share);
+        CHECK(driver_render_image(&j, &img, &r, &err));
         CHECK(log.calls == 4 && log.last == 4);
         rays += r.counts.rays_camera;
         for (int i = 0; i < FLOATS; i++) {
@@ -131,15 +135,15 @@ TEST(shares_add_up_to_the_image)
         }
         image_free(&img);
     }
-    render_set_share(NULL);
+    driver_set_share(NULL);
     CHECK(rays == 4 * 37 * 21); /* every pixel rendered by one share */
     CHECK(memcmp(sum, whole.rgb, sizeof sum) == 0);
     /* An image rendered already is returned as it is. */
     struct render_share given = {.part = 0, .parts = 1, .rendered = &whole};
     struct image copy = {0};
-    render_set_share(&given);
-    CHECK(render_image(&j, &copy, &r, &err));
-    render_set_share(NULL);
+    driver_set_share(&given);
+    CHECK(driver_render_image(&j, &copy, &r, &err));
+    driver_set_share(NULL);
     CHECK(r.passes_done == 4 && memcmp(copy.rgb, whole.rgb, sizeof sum) == 0);
     image_free(&copy);
     image_free(&whole);

@@ -1,5 +1,5 @@
 /*
- * test_image.c - unit tests of common/image.c (and image_exr.c): the sRGB
+ * test_image.c - unit tests of common/image/image.c (and image_exr.c): the sRGB
  * transfer function, the PNG checksums, the PNG, PPM, PFM and EXR writers,
  * the PFM reader, and image_write()'s temporary-file-and-rename scheme.
  *
@@ -60,7 +60,7 @@ load_be32(const uint8_t *p)
     return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];
 }
 
-/* Bit-at-a-time CRC-32, straight from the definition, to check png_crc32. */
+/* Bit-at-a-time CRC-32, straight from the definition, to check image_crc32. */
 static uint32_t
 reference_crc32(const uint8_t *data, size_t n)
 {
@@ -74,7 +74,7 @@ reference_crc32(const uint8_t *data, size_t n)
     return ~crc;
 }
 
-/* Adler-32 with a modulo after every byte, to check png_adler32. */
+/* Adler-32 with a modulo after every byte, to check image_adler32. */
 static uint32_t
 reference_adler32(const uint8_t *data, size_t n)
 {
@@ -117,49 +117,52 @@ same_bits(float a, float b)
 
 TEST(srgb_known_values)
 {
-    CHECK(srgb_encode8(0.0f) == 0);
-    CHECK(srgb_encode8(1.0f) == 255);
+    CHECK(image_srgb_encode8(0.0f) == 0);
+    CHECK(image_srgb_encode8(1.0f) == 255);
     // 0.5 -> 0.73536 * 255 = 187.5 -> 188; 0.18 -> 0.46136 * 255 = 117.6 -> 118
-    CHECK(srgb_encode8(0.5f) == 188);
-    CHECK(srgb_encode8(0.18f) == 118);
-    CHECK_NEAR(srgb_from_linear(0.5f), 0.735356983, 1e-6);
-    CHECK_NEAR(srgb_from_linear(0.0031308f), 0.040449936, 1e-6);
-    CHECK_NEAR(linear_from_srgb(0.04045f), 0.04045 / 12.92, 1e-9);
-    CHECK_NEAR(linear_from_srgb(1.0f), 1.0, 1e-6);
-    CHECK_NEAR(srgb_from_linear(1.0f), 1.0, 1e-6);
+    CHECK(image_srgb_encode8(0.5f) == 188);
+    CHECK(image_srgb_encode8(0.18f) == 118);
+    CHECK_NEAR(image_srgb_from_linear(0.5f), 0.735356983, 1e-6);
+    CHECK_NEAR(image_srgb_from_linear(0.0031308f), 0.040449936, 1e-6);
+    CHECK_NEAR(image_linear_from_srgb(0.04045f), 0.04045 / 12.92, 1e-9);
+    CHECK_NEAR(image_linear_from_srgb(1.0f), 1.0, 1e-6);
+    CHECK_NEAR(image_srgb_from_linear(1.0f), 1.0, 1e-6);
 }
 
 TEST(srgb_clamps)
 {
-    CHECK(srgb_encode8(2.0f) == 255);
-    CHECK(srgb_encode8(1.0001f) == 255);
-    CHECK(srgb_encode8(-0.5f) == 0);
-    CHECK(srgb_encode8(-0.0f) == 0);
-    CHECK(srgb_encode8(NAN) == 0);
-    CHECK(srgb_encode8(-NAN) == 0);
-    CHECK(srgb_encode8(INFINITY) == 255);
-    CHECK(srgb_encode8(-INFINITY) == 0);
-    CHECK(srgb_encode8(FLT_MAX) == 255);
-    CHECK(srgb_encode8(1e-30f) == 0);
+    CHECK(image_srgb_encode8(2.0f) == 255);
+    CHECK(image_srgb_encode8(1.0001f) == 255);
+    CHECK(image_srgb_encode8(-0.5f) == 0);
+    CHECK(image_srgb_encode8(-0.0f) == 0);
+    CHECK(image_srgb_encode8(NAN) == 0);
+    CHECK(image_srgb_encode8(-NAN) == 0);
+    CHECK(image_srgb_encode8(INFINITY) == 255);
+    CHECK(image_srgb_encode8(-INFINITY) == 0);
+    CHECK(image_srgb_encode8(FLT_MAX) == 255);
+    CHECK(image_srgb_encode8(1e-30f) == 0);
 }
 
 TEST(srgb_continuity_and_round_trip)
 {
     // The two pieces meet at 0.0031308: no visible step either side.
     float knee = 0.0031308f;
-    CHECK_NEAR(srgb_from_linear(knee), srgb_from_linear(nextafterf(knee, 1.0f)), 1e-6);
-    CHECK_NEAR(linear_from_srgb(0.04045f), linear_from_srgb(nextafterf(0.04045f, 1.0f)), 1e-7);
+    CHECK_NEAR(image_srgb_from_linear(knee), image_srgb_from_linear(nextafterf(knee, 1.0f)), 1e-6);
+    CHECK_NEAR(
+        image_linear_from_srgb(0.04045f),
+        image_linear_from_srgb(nextafterf(0.04045f, 1.0f)),
+        1e-7);
     float last = -1.0f;
     for (int i = 0; i <= 10000; i++) {
         float x = (float)i / 10000.0f;
-        float e = srgb_from_linear(x);
+        float e = image_srgb_from_linear(x);
         CHECK_MSG(e > last, "not increasing at %g", (double)x);
         last = e;
-        CHECK_NEAR(linear_from_srgb(e), x, 2e-7 + 2e-6 * x);
+        CHECK_NEAR(image_linear_from_srgb(e), x, 2e-7 + 2e-6 * x);
     }
     // Every 8-bit code survives decode then encode.
     for (int k = 0; k < 256; k++) {
-        CHECK_MSG(srgb_encode8(linear_from_srgb((float)k / 255.0f)) == k, "code %d", k);
+        CHECK_MSG(image_srgb_encode8(image_linear_from_srgb((float)k / 255.0f)) == k, "code %d", k);
     }
 }
 
@@ -168,13 +171,13 @@ TEST(srgb_continuity_and_round_trip)
 TEST(crc32_and_adler32)
 {
     const uint8_t *check = (const uint8_t *)"123456789";
-    CHECK(png_crc32(0, check, 9) == 0xCBF43926u);
-    CHECK(png_crc32(png_crc32(0, check, 4), check + 4, 5) == 0xCBF43926u);
-    CHECK(png_crc32(0, NULL, 0) == 0);
+    CHECK(image_crc32(0, check, 9) == 0xCBF43926u);
+    CHECK(image_crc32(image_crc32(0, check, 4), check + 4, 5) == 0xCBF43926u);
+    CHECK(image_crc32(0, NULL, 0) == 0);
     const uint8_t *wiki = (const uint8_t *)"Wikipedia";
-    CHECK(png_adler32(1, wiki, 9) == 0x11E60398u);
-    CHECK(png_adler32(png_adler32(1, wiki, 3), wiki + 3, 6) == 0x11E60398u);
-    CHECK(png_adler32(1, NULL, 0) == 1);
+    CHECK(image_adler32(1, wiki, 9) == 0x11E60398u);
+    CHECK(image_adler32(image_adler32(1, wiki, 3), wiki + 3, 6) == 0x11E60398u);
+    CHECK(image_adler32(1, NULL, 0) == 1);
     // Long runs of 0xFF are the worst case for the deferred modulo.
     size_t n = 100000;
     uint8_t *buf = malloc(n);
@@ -183,14 +186,14 @@ TEST(crc32_and_adler32)
         return;
     }
     memset(buf, 0xFF, n);
-    CHECK(png_adler32(1, buf, n) == reference_adler32(buf, n));
+    CHECK(image_adler32(1, buf, n) == reference_adler32(buf, n));
     struct rng r = rng_make(12345, 0);
     for (size_t i = 0; i < n; i++) {
         buf[i] = (uint8_t)rng_next_u32(&r);
     }
-    CHECK(png_adler32(1, buf, n) == reference_adler32(buf, n));
-    CHECK(png_crc32(0, buf, n) == reference_crc32(buf, n));
-    CHECK(png_crc32(png_crc32(0, buf, 777), buf + 777, n - 777) == reference_crc32(buf, n));
+    CHECK(image_adler32(1, buf, n) == reference_adler32(buf, n));
+    CHECK(image_crc32(0, buf, n) == reference_crc32(buf, n));
+    CHECK(image_crc32(image_crc32(0, buf, 777), buf + 777, n - 777) == reference_crc32(buf, n));
     free(buf);
 }
 
@@ -478,7 +481,7 @@ TEST(ppm_header_and_bytes)
     CHECK(file && len == hl + 7 * 3 * 3);
     CHECK(file && memcmp(file, header, hl) == 0);
     for (size_t i = 0; file && len == hl + 63 && i < 63; i++) {
-        CHECK_MSG(file[hl + i] == srgb_encode8(img.rgb[i]), "byte %zu", i);
+        CHECK_MSG(file[hl + i] == image_srgb_encode8(img.rgb[i]), "byte %zu", i);
     }
     free(file);
     image_free(&img);
@@ -794,7 +797,7 @@ python_inflate(const char *png, const char *out_path)
     return test_run(argv, NULL, 0) == 0 ? 0 : 1;
 }
 
-/* Write img as PNG, decode it, compare with srgb_encode8; returns the file
+/* Write img as PNG, decode it, compare with image_srgb_encode8; returns the file
  * size, and the decoder's findings in info. */
 static size_t
 check_png(const struct image *img, const char *name, struct png_info *info)
@@ -813,7 +816,7 @@ check_png(const struct image *img, const char *name, struct png_info *info)
         const uint8_t *row = info->raw.data + (size_t)y * (n + 1) + 1;
         for (size_t i = 0; i < n; i++) {
             CHECK_MSG(
-                row[i] == srgb_encode8(image_pixel(img, 0, y)[i]),
+                row[i] == image_srgb_encode8(image_pixel(img, 0, y)[i]),
                 "%s row %d byte %zu",
                 name,
                 y,

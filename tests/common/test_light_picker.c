@@ -1,6 +1,6 @@
 /*
  * test_light_picker.c - the emitting triangles as one light
- * (common/light_picker.h): each triangle's share of the picks is its
+ * (common/scene/light_picker.h): each triangle's share of the picks is its
  * weight over the total, a light sampled on its own is never picked, every
  * u in [0, 1] picks a triangle (1 too: a stratified pick may round up to
  * it), and weights that overflow stay finite shares.

@@ -66,7 +66,7 @@ enum colour_class {
 static enum colour_class
 classify(const float *q)
 {
-    int p[3] = {srgb_encode8(q[0]), srgb_encode8(q[1]), srgb_encode8(q[2])};
+    int p[3] = {image_srgb_encode8(q[0]), image_srgb_encode8(q[1]), image_srgb_encode8(q[2])};
     if (near(p, 89, 203, 89, 12)) { /* sRGB of linear 0.1, 0.6, 0.1 */
         return GREEN;
     }

@@ -24,9 +24,9 @@ sample_report(void)
     };
     r.extra_names[0] = "penumbra_pixels";
     r.counts.extra[0] = 17;
-    report_set(&r, "bvh_nodes", 123, true);
-    report_set(&r, "bvh_nodes", 125, true);
-    report_set(&r, "mean_leaf", 1.75, false);
+    stats_report_set(&r, "bvh_nodes", 123, true);
+    stats_report_set(&r, "bvh_nodes", 125, true);
+    stats_report_set(&r, "mean_leaf", 1.75, false);
     return r;
 }
 
@@ -35,7 +35,7 @@ TEST(json_has_every_key_and_stage_values)
     struct report r = sample_report();
     const char *path = test_tmp_path("stats.json");
     struct diag err;
-    CHECK(report_write_json(&r, path, &err));
+    CHECK(stats_report_write_json(&r, path, &err));
     static const char *const stage_keys[] = {"penumbra_pixels", "bvh_nodes", "mean_leaf"};
     for (int i = 0; test_contract_keys[i]; i++) {
         double v;
@@ -58,7 +58,7 @@ TEST(json_write_failure_leaves_nothing)
 {
     struct report r = sample_report();
     struct diag err;
-    CHECK(!report_write_json(&r, test_tmp_path("missing/dir/s.json"), &err));
+    CHECK(!stats_report_write_json(&r, test_tmp_path("missing/dir/s.json"), &err));
     CHECK(strstr(err.msg, "cannot write") != NULL);
 }
 
@@ -67,15 +67,15 @@ TEST(printed_report_names_rays_and_rate)
     struct report r = sample_report();
     const char *path = test_tmp_path("report.txt");
     FILE *f = fopen(path, "w");
-    report_print(f, &r);
+    stats_report_print(f, &r);
     fclose(f);
     char *text = test_read_file(path, NULL);
     CHECK(text && strstr(text, "camera") && strstr(text, "shadow") && strstr(text, "Mrays/s"));
     CHECK(text && strstr(text, "penumbra_pixels"));
     free(text);
-    CHECK(peak_rss_bytes() > 0);
-    double t0 = clock_seconds();
-    CHECK(clock_seconds() >= t0);
+    CHECK(stats_peak_rss_bytes() > 0);
+    double t0 = stats_clock_seconds();
+    CHECK(stats_clock_seconds() >= t0);
 }
 
 TEST_MAIN(

@@ -1,7 +1,7 @@
 /*
- * test_trace.c - the pixel trace's recorder and writers (common/trace.c,
- * common/trace_write.c), without a stage:
- *   - render_pixel_traced gives the pixel the value render_image stores,
+ * test_trace.c - the pixel trace's recorder and writers (common/inspect/trace.c,
+ * common/inspect/trace_write.c), without a stage:
+ *   - driver_render_pixel_traced gives the pixel the value driver_render_image stores,
  *     bit for bit, NaN passes guarded alike, and records one pass estimate
  *     per pass;
  *   - names: primitives (spheres, quads, triangles, lights) and materials
@@ -76,6 +76,7 @@ written(const struct trace *t, bool json)
 /* A pixel function that records a sample and a hit, and whose value is
  * its random stream's first number u, or NaN when u < NAN_BELOW. */
 #define NAN_BELOW 0.3
+
 static vec3
 recording_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
 {
@@ -97,24 +98,19 @@ TEST(traced_pixel_is_the_rendered_pixel)
     if (!load(&s)) {
         return;
     }
-    struct render_job job = {
-        .width = 8,
-        .height = 6,
-        .threads = 2,
-        .passes = 4,
-        .seed = 7,
-        .pixel = recording_pixel};
+    struct render_job job =
+        {.width = 8, .height = 6, .threads = 2, .passes = 4, .seed = 7, .pixel = recording_pixel};
     struct image img = {0};
     struct render_result result;
     struct diag err;
-    CHECK(render_image(&job, &img, &result, &err));
+    CHECK(driver_render_image(&job, &img, &result, &err));
     int nan_passes = 0;
     for (int y = 0; y < 6; y += 5) {
         for (int x = 0; x < 8; x += 3) {
             struct trace *t = trace_new(&s, x, y);
             float rgb[3];
             struct render_result one;
-            render_pixel_traced(&job, x, y, t, rgb, &one);
+            driver_render_pixel_traced(&job, x, y, t, rgb, &one);
             CHECK(memcmp(rgb, image_pixel(&img, x, y), sizeof rgb) == 0);
             char *json = written(t, true);
             bool any_nan = false;

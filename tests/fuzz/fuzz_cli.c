@@ -7,7 +7,7 @@
  * its end is an AddressSanitizer error).  The stage's own main() runs
  * (fuzz_cli_stage.c: its main.c compiled as it is): its option table, and
  * every check before the scene is loaded, the output name and the
- * identity checks of run_parse (common/run.c) included.  The run stops
+ * identity checks of run_parse (common/app/run.c) included.  The run stops
  * where main() would load the scene, so nothing is read, rendered or
  * written.
  *

@@ -148,7 +148,8 @@ EOF
 share_builds() {
     sb_dir=$1
     sb_key=$( (echo "${CC:-cc} ${CFLAGS:-}"
-        cd "$root" && find common tests tests/lib -maxdepth 1 -type f | LC_ALL=C sort | xargs cksum) |
+        cd "$root" && { find common -type f; find tests tests/lib -maxdepth 1 -type f; } | LC_ALL=C sort |
+            xargs cksum) |
         cksum | awk '{ print $1 }')
     sb_shared=$out/shared/$sb_key
     mkdir -p "$sb_shared/common" "$sb_shared/support" "$sb_dir/build/tests"

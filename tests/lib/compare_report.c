@@ -93,7 +93,7 @@ put_image(
         id ? id : "",
         id ? "\"" : "",
         alt);
-    write_base64(f, png, n);
+    image_write_base64(f, png, n);
     fputs("\">", f);
 }
 
@@ -143,8 +143,8 @@ static const char measured_alarms[] =
 void
 compare_format_alarms(char *buf, size_t cap, const struct comparison *c)
 {
-    int tests = 3 * (c->blocks.n_blocks + c->blocks.n_windows)
-                + (c->regions ? c->regions->n_tests : 0);
+    int tests =
+        3 * (c->blocks.n_blocks + c->blocks.n_windows) + (c->regions ? c->regions->n_tests : 0);
     if (c->noise == NOISE_NONE) {
         snprintf(buf, cap, "%s", "");
         return;

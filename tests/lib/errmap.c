@@ -61,9 +61,9 @@ put(struct image *out, int x, int y, struct rgb8 c)
         return;
     }
     float *p = image_pixel(out, x, y);
-    p[0] = linear_from_srgb(c.r / 255.0f);
-    p[1] = linear_from_srgb(c.g / 255.0f);
-    p[2] = linear_from_srgb(c.b / 255.0f);
+    p[0] = image_linear_from_srgb(c.r / 255.0f);
+    p[1] = image_linear_from_srgb(c.g / 255.0f);
+    p[2] = image_linear_from_srgb(c.b / 255.0f);
 }
 
 static void

@@ -280,7 +280,7 @@ zlib_inflate(const uint8_t *data, size_t n, struct inflate_out *o)
     }
     const uint8_t *a = data + n - 4;
     uint32_t adler = (uint32_t)a[0] << 24 | (uint32_t)a[1] << 16 | (uint32_t)a[2] << 8 | a[3];
-    return png_adler32(1, o->data, o->n) == adler ? NULL : "zlib checksum mismatch";
+    return image_adler32(1, o->data, o->n) == adler ? NULL : "zlib checksum mismatch";
 }
 
 /* ---- PNG ------------------------------------------------------------------- */
@@ -393,7 +393,7 @@ convert_pixels(const uint8_t *raw, const struct png_header *h, size_t stride, st
                 }
             }
             for (int c = 0; c < 3; c++) {
-                q[c] = linear_from_srgb(rgb[c]);
+                q[c] = image_linear_from_srgb(rgb[c]);
             }
         }
     }
@@ -419,7 +419,7 @@ read_chunks(const uint8_t *data, size_t n, struct png_header *h, uint8_t **idat,
         if (len > n - pos - 12) {
             return "truncated chunk";
         }
-        if (png_crc32(0, type, (size_t)len + 4) != load_be32(body + len)) {
+        if (image_crc32(0, type, (size_t)len + 4) != load_be32(body + len)) {
             return "chunk checksum mismatch";
         }
         if (memcmp(type, "IHDR", 4) == 0) {

@@ -63,7 +63,7 @@ pathcheck_render_batches(
     if (!out->images) {
         return false;
     }
-    double start = clock_seconds();
+    double start = stats_clock_seconds();
     for (int i = 0; i < k; i++) {
         const char *stats = NULL;
         if (!pathcheck_render(scene, args, seed0 + (uint64_t)i, &out->images[i], &stats)) {
@@ -74,7 +74,7 @@ pathcheck_render_batches(
         out->nan_pixels += stagecheck_stat(stats, "nan_pixels");
         out->camera_rays += stagecheck_stat(stats, "rays_camera");
     }
-    out->seconds = clock_seconds() - start;
+    out->seconds = stats_clock_seconds() - start;
     return true;
 }
 

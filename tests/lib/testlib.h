@@ -144,7 +144,7 @@ bool test_render_image(const char *scene, const char *const args[], struct image
 bool test_json_number(const char *path, const char *key, double *out);
 
 /* The linear value of the 8-bit sRGB code k (IEC 61966-2-1), written
- * here from the standard, in float as image.h's linear_from_srgb is. */
+ * here from the standard, in float as image.h's image_linear_from_srgb is. */
 double test_srgb8_linear(int k);
 
 /* A 4 x 2 PNG texture, NAME in the temp dir, whose first `lit` texels have

@@ -3,8 +3,8 @@
  * before any work (distinct from the other outputs and from every input by
  * file identity, its directory there and writable), the outputs of a run
  * appear all together or not at all, and no signal short of SIGKILL leaves
- * a temporary file behind.  The plumbing is common/run.c and
- * common/run_outputs.c, the same in every stage, so stage 01 tests it.
+ * a temporary file behind.  The plumbing is common/app/run.c and
+ * common/app/run_outputs.c, the same in every stage, so stage 01 tests it.
  */
 #include <dirent.h>
 #include <signal.h>

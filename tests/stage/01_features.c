@@ -8,7 +8,7 @@
 
 TEST(render_features_agree_with_the_feature_table)
 {
-    CHECK(RENDER_FEATURES == features_of_stage(stage_number(STAGE_NAME)));
+    CHECK(RENDER_FEATURES == feature_table_of_stage(feature_table_stage_number(STAGE_NAME)));
 }
 
 TEST(every_feature_names_the_stage_that_adds_it)

@@ -177,9 +177,9 @@ TEST(svg_is_valid_and_renders_in_chromium)
     for (int y = 0; ok && y < shot.height; y++) {
         for (int x = 0; x < shot.width; x++) {
             const float *p = image_pixel(&shot, x, y);
-            int r = srgb_encode8(p[0]);
-            int g = srgb_encode8(p[1]);
-            int b = srgb_encode8(p[2]);
+            int r = image_srgb_encode8(p[0]);
+            int g = image_srgb_encode8(p[1]);
+            int b = image_srgb_encode8(p[2]);
             yellow += r > 240 && g > 200 && g < 225 && b < 20;
             orange += r > 240 && g > 115 && g < 140 && b < 30;
         }

@@ -2,7 +2,7 @@
  * 07_reference_masks.c - the feature masks stored beside the references
  * (tests/reference/NAME.feature.pfm, by which make grade breaks a lab's
  * error down into regions) are what this stage's `--aov feature` writes
- * for the scenes now: a change to the scenes, the labels (common/aov.c) or
+ * for the scenes now: a change to the scenes, the labels (common/render/aov.c) or
  * the geometry that moves a region fails here until `make
  * reference-masks` writes them again.
  */
