@@ -1,7 +1,7 @@
 /*
  * gltf.h - triangle meshes from glTF 2.0 files (.gltf or .glb).
  *
- * The only C++ in the project lives behind this C API: gltf_shim.cc (and the
+ * The only C++ in the project lives behind this C API: gltf_load.cc (and the
  * gltf_*.cc files it lists) wraps tinygltf (Debian's libtinygltf-dev) when
  * the build finds it, and gltf_stub.c, compiled otherwise, returns a clear
  * error instead.

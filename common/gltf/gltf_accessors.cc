@@ -4,7 +4,7 @@
  * stride, all in size_t with overflow guards) and planned into parts ready
  * to copy, with the totals checked before anything is allocated.
  */
-#include "gltf_shim.h"
+#include "gltf_steps.h"
 
 #include <climits>
 

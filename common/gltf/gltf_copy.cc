@@ -3,7 +3,7 @@
  * list: positions by the node's matrix, normals by its inverse transpose,
  * indices offset (and their winding flipped under a mirroring transform).
  */
-#include "gltf_shim.h"
+#include "gltf_steps.h"
 
 #include <cmath>
 #include <cstdlib>

@@ -3,7 +3,7 @@
 // loader turns each into a note, and --strict refuses the scene.
 #include <string>
 
-#include "gltf_shim.h"
+#include "gltf_steps.h"
 
 static void
 add(struct gltf_mesh *out, const std::string &line)

@@ -12,7 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "gltf_shim.h"
+#include "gltf_steps.h"
 
 // Copy a name of the file into a fixed buffer: cut, control bytes as '?'.
 static void

@@ -5,7 +5,7 @@
  * absolute path, no symbolic link leading out of it), within one byte
  * budget, and never decode images.
  */
-#include "gltf_shim.h"
+#include "gltf_steps.h"
 
 #include <cerrno>
 #include <cstdlib>

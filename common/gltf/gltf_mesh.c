@@ -1,6 +1,6 @@
 /*
  * gltf_mesh.c - gltf_free (gltf.h), the same with or without tinygltf, so
- * that gltf_shim.cc and gltf_stub.c need no copy of it.
+ * that gltf_load.cc and gltf_stub.c need no copy of it.
  */
 #include "gltf.h"
 

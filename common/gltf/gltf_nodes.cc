@@ -3,7 +3,7 @@
  * transform, composed down the node tree of the default scene (else scene
  * 0, else every root node) into one world transform per mesh drawn.
  */
-#include "gltf_shim.h"
+#include "gltf_steps.h"
 
 #include <cmath>
 

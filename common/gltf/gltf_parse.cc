@@ -4,7 +4,7 @@
  * tinygltf parses them, tinygltf runs with our filesystem callbacks, and
  * extensions the file requires but the loader lacks refuse it.
  */
-#include "gltf_shim.h"
+#include "gltf_steps.h"
 
 #include <cctype>
 #include <cstring>
@@ -23,7 +23,7 @@
 #define GLB_CHUNK_JSON 0x4E4F534Au
 #define GLB_CHUNK_BIN 0x004E4942u
 
-// JSON nested deeper is refused (see gltf_shim.cc); glTF's own structure is
+// JSON nested deeper is refused (see gltf_load.cc); glTF's own structure is
 // less than 10 levels deep.
 #define GLTF_MAX_JSON_DEPTH 128
 

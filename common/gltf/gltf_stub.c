@@ -1,7 +1,7 @@
 /*
  * gltf_stub.c - gltf.h for builds without tinygltf.
  *
- * Compiled instead of gltf_shim.cc and the gltf_*.cc files beside it when
+ * Compiled instead of gltf_load.cc and the gltf_*.cc files beside it when
  * the build does not find tinygltf, so the rest of the project links either
  * way: a scene that names a mesh gets a message saying how to obtain glTF
  * support, never a link error.

@@ -7,7 +7,7 @@
  * names it, after its header's size is checked: a hostile file cannot make
  * the decoder allocate more than GLTF_TEXTURE_MAX_PIXELS texels.
  */
-#include "gltf_shim.h"
+#include "gltf_steps.h"
 
 #include <cmath>
 

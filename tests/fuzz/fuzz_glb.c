@@ -1,5 +1,5 @@
 /*
- * fuzz_glb.c - binary glTF (.glb) through the shim (gltf_load).
+ * fuzz_glb.c - binary glTF (.glb) through the glTF loader (gltf_load).
  *
  * The input is the whole .glb file: header, JSON chunk, BIN chunk.  A success
  * must give indices below the vertex count; a failure must say why.

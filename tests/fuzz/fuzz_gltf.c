@@ -1,5 +1,5 @@
 /*
- * fuzz_gltf.c - JSON glTF (.gltf) through the shim, with its buffers.
+ * fuzz_gltf.c - JSON glTF (.gltf) through the glTF loader, with its buffers.
  *
  * The input is the JSON text, optionally followed by a NUL byte and the bytes
  * of an external buffer: the harness writes model.gltf and, after the NUL,

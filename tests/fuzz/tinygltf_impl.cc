@@ -4,7 +4,7 @@
  * is, the fuzzer would see none of tinygltf's branches and AddressSanitizer
  * none of its memory accesses.  Compiled here from the same header (and
  * nlohmann-json's, nlohmann-json3-dev), the glTF harnesses fuzz the JSON
- * parser and tinygltf's own checks too.  Images are never decoded (the shim
+ * parser and tinygltf's own checks too.  Images are never decoded (the loader
  * skips them), so stb_image is left out.
  */
 #define TINYGLTF_IMPLEMENTATION
@@ -16,7 +16,7 @@
 namespace tinygltf
 {
 // The shim's translation units see the header without TINYGLTF_NO_STB_IMAGE,
-// so their TinyGLTF objects start out pointing at these two; the shim sets
+// so their TinyGLTF objects start out pointing at these two; the loader sets
 // its own image loader (which skips images) and never writes.
 bool
 LoadImageData(

@@ -1,5 +1,5 @@
 /*
- * gltf_shim.h - what the glTF loader's C++ files share (gltf_shim.cc lists
+ * gltf_steps.h - what the glTF loader's C++ files share (gltf_load.cc lists
  * them); internal to common/, whose API for meshes is gltf.h.
  *
  * A load goes parse_model -> check_required_extensions -> collect_jobs ->
@@ -7,8 +7,8 @@
  * false with *why set on failure, or throws out_of_memory (below) when the
  * system refuses an allocation.
  */
-#ifndef GLTF_SHIM_H
-#define GLTF_SHIM_H
+#ifndef GLTF_STEPS_H
+#define GLTF_STEPS_H
 
 #include <cstdarg>
 #include <cstddef>
@@ -71,7 +71,7 @@ struct placed {
 };
 
 // printf into a std::string (messages are short: cut at 511 bytes).  Inline:
-// every step uses it, and a helper in gltf_shim.cc, which calls the steps,
+// every step uses it, and a helper in gltf_load.cc, which calls the steps,
 // would make the files call each other in a circle.
 inline std::string format(const char *fmt, ...) DIAG_PRINTF(1, 2);
 
@@ -188,4 +188,4 @@ bool copy_placed(
 // gltf_dropped.cc
 void copy_dropped(const tinygltf::Model &model, struct gltf_mesh *out);
 
-#endif /* GLTF_SHIM_H */
+#endif /* GLTF_STEPS_H */

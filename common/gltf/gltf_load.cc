@@ -1,12 +1,12 @@
 /*
- * gltf_shim.cc - gltf.h implemented with tinygltf (the project's only C++).
+ * gltf_load.cc - gltf.h implemented with tinygltf (the project's only C++).
  * This file holds the C API (gltf_free, the same without tinygltf, is in
  * gltf_mesh.c); the loader's steps are in gltf_files.cc (reading
  * files, confined), gltf_parse.cc (GLB and JSON checks, tinygltf),
  * gltf_nodes.cc (transforms), gltf_accessors.cc (checks), gltf_copy.cc,
  * gltf_extras.cc (materials, cameras, lights), gltf_textures.cc (a
  * texture's mean colour) and gltf_dropped.cc (what no stage models), which
- * share gltf_shim.h.
+ * share gltf_steps.h.
  *
  * tinygltf parses the JSON and gathers the buffers; everything after that is
  * ours: choosing the nodes, checking every accessor against the bytes that
@@ -45,7 +45,7 @@
  *     ignored (the mesh is taken in its rest pose);
  *   - a scene that yields no triangle is an error.
  */
-#include "gltf_shim.h"
+#include "gltf_steps.h"
 
 #include <algorithm>
 #include <cstdlib>
