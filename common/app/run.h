@@ -74,7 +74,7 @@ bool run_check_identities(struct run *run, const struct named_file *inputs, int 
 
 /* The job every stage starts from: the image size (the scene's, or -W/-H
  * keeping its aspect ratio), the threads, the seed, the progress bar, one
- * pass over ctx.  The stage sets its pixel function (a progressive stage
+ * pass over ctx.  The stage sets its tile function (a progressive stage
  * also its passes and its time budget). */
 struct render_job run_job(const struct run *run, const void *ctx);
 

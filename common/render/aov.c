@@ -144,7 +144,7 @@ aov_pixel(
     }
 }
 
-/* What the driver's pixel function needs. */
+/* What the driver's tile function needs. */
 struct aov_job {
     const struct aov_source *src;
     const struct scene *scene;
@@ -152,15 +152,11 @@ struct aov_job {
     struct image *out;
 };
 
-/* The driver's pixel function (driver.h): every pass of the pixel goes to
- * its image (each pixel is written by one thread only); the driver's own
- * image is left black. */
-static vec3
-aov_job_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+/* Every pass of pixel (px, py) into its image (each pixel is written by
+ * one thread only). */
+static void
+aov_job_store(const struct aov_job *job, int px, int py)
 {
-    (void)rng;
-    (void)st;
-    const struct aov_job *job = ctx;
     vec3 values[AOV_COUNT];
     aov_pixel(job->src, job->scene, job->passes, px, py, values);
     for (int pass = 0; pass < AOV_COUNT; pass++) {
@@ -171,7 +167,24 @@ aov_job_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st
             rgb[2] = (float)values[pass].z;
         }
     }
-    return vec3_splat(0);
+}
+
+/* The driver's tile function (driver.h): the passes of each pixel go to
+ * their images; the driver's own image is left black. */
+static bool
+aov_job_tile(const void *ctx, const struct tile *tile, struct stats *st)
+{
+    (void)st;
+    for (int py = tile->y0; py < tile->y1; py++) {
+        for (int px = tile->x0; px < tile->x1; px++) {
+            if (driver_stop_requested()) {
+                return false;
+            }
+            aov_job_store(ctx, px, py);
+            tile_put(tile, px, py, vec3_splat(0));
+        }
+    }
+    return true;
 }
 
 static void
@@ -210,7 +223,7 @@ aov_render(
         .passes = 1,
         .seed = like->seed,
         .progress = like->progress,
-        .pixel = aov_job_pixel,
+        .tile = aov_job_tile,
         .ctx = &ctx,
     };
     struct image unused = {0};

@@ -60,6 +60,12 @@ driver_request_stop(void)
     stop_requested = 1;
 }
 
+bool
+driver_stop_requested(void)
+{
+    return stop_requested != 0;
+}
+
 static void
 draw_progress(struct pass_state *ps, bool final)
 {
@@ -96,38 +102,23 @@ draw_progress(struct pass_state *ps, bool final)
     fflush(stderr);
 }
 
-/* Pixel (x, y)'s estimate in this pass, from its own random stream. */
-static vec3
-pixel_estimate(const struct render_job *job, int x, int y, int pass, struct stats *st)
-{
-    uint64_t index = (uint64_t)y * (uint64_t)job->width + (uint64_t)x;
-    struct rng rng = rng_for_pixel(job->seed, index, (uint64_t)pass);
-    return job->pixel(job->ctx, x, y, &rng, st);
-}
-
-/* Whether the tile was finished (a stop may cut it short). */
+/* Whether the tile was finished (a stop may cut it short).  The stage's
+ * tile function sees the stop after the pixel at hand, not after the tile:
+ * a tile of a heavy scene takes many seconds, and a stop must come within
+ * one.  A tile cut short is not counted done, so the pass it belongs to is
+ * never used (run_pass). */
 static bool
 render_tile(struct pass_state *ps, int tile, struct stats *st)
 {
     const struct render_job *job = ps->job;
-    int x0 = (tile % ps->tiles_x) * TILE_SIZE;
-    int y0 = (tile / ps->tiles_x) * TILE_SIZE;
-    int x1 = x0 + TILE_SIZE < job->width ? x0 + TILE_SIZE : job->width;
-    int y1 = y0 + TILE_SIZE < job->height ? y0 + TILE_SIZE : job->height;
-    /* A stop is seen after the pixel at hand, not after the tile: a tile of
-     * a heavy scene takes many seconds, and a stop must come within one.
-     * A tile cut short is not counted done, so the pass it belongs to is
-     * never used (run_pass). */
-    for (int y = y0; y < y1; y++) {
-        for (int x = x0; x < x1; x++) {
-            if (stop_requested) {
-                return false;
-            }
-            size_t index = (size_t)y * (size_t)job->width + (size_t)x;
-            ps->values[index] = pixel_estimate(job, x, y, ps->pass, st);
-        }
-    }
-    return true;
+    struct tile t = {.pass = ps->pass, .seed = job->seed, .width = job->width};
+    t.x0 = (tile % ps->tiles_x) * TILE_SIZE;
+    t.y0 = (tile / ps->tiles_x) * TILE_SIZE;
+    t.x1 = t.x0 + TILE_SIZE < job->width ? t.x0 + TILE_SIZE : job->width;
+    t.y1 = t.y0 + TILE_SIZE < job->height ? t.y0 + TILE_SIZE : job->height;
+    t.out = ps->values + (size_t)t.y0 * (size_t)job->width + (size_t)t.x0;
+    t.stride = job->width;
+    return job->tile(job->ctx, &t, st);
 }
 
 static void *
@@ -344,8 +335,14 @@ driver_render_pixel_traced(
     struct stats st = {.trace = trace};
     for (int pass = 0; pass < job->passes; pass++) {
         trace_pass_begin(trace, pass);
-        vec3 v = pixel_estimate(job, px, py, pass, &st);
+        vec3 v = vec3_splat(0);
+        struct tile one = {px, py, px + 1, py + 1, pass, job->seed, job->width, &v, 1};
+        bool finished = job->tile(job->ctx, &one, &st);
         trace_pass_end(trace, v);
+        if (!finished) {
+            result->interrupted = true; /* a stop: the passes done so far */
+            break;
+        }
         accumulate(v, &sum, &bad);
         result->passes_done++;
     }

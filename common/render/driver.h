@@ -1,14 +1,14 @@
 /*
  * driver.h - the parallel tile renderer every stage uses.
  *
- * A stage supplies one function: the radiance estimate of one pixel for one
- * pass.  The driver cuts the image into 16x16 tiles, lets the threads take
- * tiles from a shared counter, gives every pixel its own random stream
- * (rng_for_pixel: the image does not depend on the thread count), averages
- * the passes, counts NaN/Inf pixels, draws the progress bar and keeps the
- * time.  Stages that sample progressively (07) run many passes; a pass that
- * is interrupted (Ctrl-C, time budget) is dropped whole, so the image always
- * holds an equal number of samples in every pixel.
+ * A stage supplies one function: its loop over the pixels of one tile in one
+ * pass (each stage's render_tile, render.c).  The driver cuts the image into
+ * 16x16 tiles, lets the threads take tiles from a shared counter, names every
+ * pixel's own random stream (tile_pixel_rng: the image does not depend on
+ * the thread count), averages the passes, counts NaN/Inf pixels, draws the
+ * progress bar and keeps the time.  Stages that sample progressively (07) run many passes; a pass
+ * that is interrupted (Ctrl-C, time budget) is dropped whole, so the image always holds an equal
+ * number of samples in every pixel.
  */
 #ifndef DRIVER_H
 #define DRIVER_H
@@ -22,8 +22,37 @@
 #include "stats.h"
 #include "vec3.h"
 
-/* Radiance estimate for pixel (px, py) (0,0 top-left) in one pass. */
-typedef vec3 (*pixel_fn)(const void *ctx, int px, int py, struct rng *rng, struct stats *st);
+/* The pixels [x0, x1) x [y0, y1) of one pass (0,0 is the top-left pixel),
+ * and where their estimates go: tile_put. */
+struct tile {
+    int x0, y0, x1, y1;
+    int pass;
+    uint64_t seed; /* the job's */
+    int width; /* the image's: a pixel's index y * width + x names its stream */
+    vec3 *out; /* the estimate of (x, y) at out[(y - y0) * stride + x - x0] */
+    int stride;
+};
+
+/* A stage's tile function: each pixel's radiance estimate for the tile's
+ * pass, stored with tile_put.  It asks driver_stop_requested() after each
+ * pixel and returns false when a stop came (the pass is then dropped whole);
+ * true when every pixel is done. */
+typedef bool (*tile_fn)(const void *ctx, const struct tile *tile, struct stats *st);
+
+/* Store the estimate of pixel (x, y) of the tile. */
+static inline void
+tile_put(const struct tile *tile, int x, int y, vec3 estimate)
+{
+    tile->out[(size_t)(y - tile->y0) * (size_t)tile->stride + (size_t)(x - tile->x0)] = estimate;
+}
+
+/* Pixel (x, y)'s own random stream in the tile's pass (rng_for_pixel). */
+static inline struct rng
+tile_pixel_rng(const struct tile *tile, int x, int y)
+{
+    uint64_t index = (uint64_t)y * (uint64_t)tile->width + (uint64_t)x;
+    return rng_for_pixel(tile->seed, index, (uint64_t)tile->pass);
+}
 
 struct render_job {
     int width, height;
@@ -32,7 +61,7 @@ struct render_job {
     double time_limit; /* seconds; stop starting passes after this (0: none) */
     uint64_t seed;
     bool progress; /* draw a progress bar on stderr */
-    pixel_fn pixel;
+    tile_fn tile;
     const void *ctx;
 };
 
@@ -63,7 +92,8 @@ struct trace;
 /* Render only pixel (px, py), pass after pass, with the random streams it
  * has in driver_render_image, recording its rays into trace (trace.h); rgb gets
  * its value as driver_render_image stores it, bit for bit.  The time limit is not
- * applied: every pass of the job is rendered. */
+ * applied: every pass of the job is rendered, unless a stop is asked for
+ * (then result->interrupted, and rgb is the mean of the passes done). */
 void driver_render_pixel_traced(
     const struct render_job *job,
     int px,
@@ -92,8 +122,11 @@ struct render_share {
  * image. */
 void driver_set_share(const struct render_share *share);
 
-/* Ask a running driver_render_image to stop after the tiles in flight; safe to
+/* Ask a running driver_render_image to stop after the pixels at hand; safe to
  * call from a signal handler. */
 void driver_request_stop(void);
+
+/* Whether a stop was asked for: a tile function asks after each pixel. */
+bool driver_stop_requested(void);
 
 #endif /* DRIVER_H */

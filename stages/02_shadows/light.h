@@ -22,7 +22,8 @@ vec3 area_light_intensity(const struct area_light *light, vec3 p);
 /* For --pixel --trace (inspect.h), called only when inspecting: record the
  * shadow ray and, when it is not clear, the nearest surface in its way
  * (found by a second, closest-hit query). */
-void inspect_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st);
+void
+inspect_shadow_ray(const struct world *w, ray shadow, real t_max, bool clear, struct stats *st);
 
 /* Whether the segment from the surface at h to the point `to` is clear:
  * one shadow ray, an any-hit query. */

@@ -53,10 +53,8 @@ trace(const struct renderer *renderer, ray r, struct stats *st)
 }
 
 vec3
-render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+render_pixel(const struct renderer *renderer, int px, int py, struct stats *st)
 {
-    (void)rng; /* one ray through the pixel centre: nothing is random */
-    const struct renderer *renderer = ctx;
     real x = (real)px + (real)0.5;
     real y = (real)py + (real)0.5;
     ray primary = camera_ray(&renderer->camera, x, y);
@@ -65,4 +63,19 @@ render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
     vec3 l = trace(renderer, primary, st);
     inspect_sample_done(st, l);
     return l;
+}
+
+bool
+render_tile(const void *ctx, const struct tile *tile, struct stats *st)
+{
+    const struct renderer *renderer = ctx;
+    for (int py = tile->y0; py < tile->y1; py++) {
+        for (int px = tile->x0; px < tile->x1; px++) {
+            if (driver_stop_requested()) {
+                return false; /* after the pixel at hand: a stop comes within a second */
+            }
+            tile_put(tile, px, py, render_pixel(renderer, px, py, st));
+        }
+    }
+    return true;
 }

@@ -6,6 +6,7 @@
 #define RENDER_H
 
 #include "camera.h"
+#include "driver.h"
 #include "geometry.h"
 #include "rng.h"
 #include "scene.h"
@@ -28,7 +29,11 @@ vec3 shade(const struct renderer *renderer, const struct hit *h, struct stats *s
 /* Radiance arriving at r.o from direction -r.d. */
 vec3 trace(const struct renderer *renderer, ray r, struct stats *st);
 
-/* The driver's pixel function (driver.h): one ray through the pixel centre. */
-vec3 render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st);
+/* The radiance through pixel (px, py), (0, 0) top-left: one ray through its centre. */
+vec3 render_pixel(const struct renderer *renderer, int px, int py, struct stats *st);
+
+/* The driver's tile function (driver.h): each pixel's radiance for the tile's
+ * pass; false when a stop cut the tile short. */
+bool render_tile(const void *ctx, const struct tile *tile, struct stats *st);
 
 #endif /* RENDER_H */

@@ -147,9 +147,8 @@ trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct
 }
 
 vec3
-render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+render_pixel(const struct renderer *renderer, int px, int py, struct rng *rng, struct stats *st)
 {
-    const struct renderer *renderer = ctx;
     real x = (real)px + (real)0.5;
     real y = (real)py + (real)0.5;
     ray primary = camera_ray(&renderer->camera, x, y);
@@ -158,4 +157,20 @@ render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
     vec3 l = trace(renderer, primary, 1, rng, st);
     inspect_sample_done(st, l);
     return l;
+}
+
+bool
+render_tile(const void *ctx, const struct tile *tile, struct stats *st)
+{
+    const struct renderer *renderer = ctx;
+    for (int py = tile->y0; py < tile->y1; py++) {
+        for (int px = tile->x0; px < tile->x1; px++) {
+            if (driver_stop_requested()) {
+                return false; /* after the pixel at hand: a stop comes within a second */
+            }
+            struct rng rng = tile_pixel_rng(tile, px, py); /* the pixel's own stream */
+            tile_put(tile, px, py, render_pixel(renderer, px, py, &rng, st));
+        }
+    }
+    return true;
 }

@@ -82,7 +82,7 @@ static int
 render(struct renderer *renderer, struct run *run)
 {
     struct render_job job = run_job(run, renderer);
-    job.pixel = render_pixel;
+    job.tile = render_tile;
     renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
     run->rep.extra_names[STAT_PENUMBRA] = "penumbra_pixels";
     run->aov = (struct aov_source){renderer, pass_camera_ray, pass_first_hit};

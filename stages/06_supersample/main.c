@@ -120,7 +120,7 @@ static int
 render(struct renderer *renderer, struct run *run)
 {
     struct render_job job = run_job(run, renderer);
-    job.pixel = render_pixel;
+    job.tile = render_tile;
     renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
     run->rep.extra_names[STAT_PENUMBRA] = "penumbra_pixels";
     run->rep.extra_names[STAT_AA_REFINED] = "aa_refined_pixels";

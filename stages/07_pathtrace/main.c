@@ -151,7 +151,7 @@ static int
 render(struct renderer *renderer, struct run *run)
 {
     struct render_job job = run_job(run, renderer);
-    job.pixel = render_pixel;
+    job.tile = render_tile;
     /* Progressive (run.h): passes of a few samples, so that --time or a
      * Ctrl-C can stop it after any pass; renderer->spp becomes a pass's. */
     renderer->spp = run_progressive(&job, renderer->spp, renderer->time_limit);

@@ -6,6 +6,7 @@
 #define RENDER_H
 
 #include "camera.h"
+#include "driver.h"
 #include "geometry.h"
 #include "light.h"
 #include "rng.h"
@@ -87,9 +88,14 @@ vec3 shade(
  * beyond max_depth is traced. */
 vec3 trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, struct stats *st);
 
-/* The driver's pixel function (driver.h): the mean radiance of spp camera
+/* The radiance through pixel (px, py), (0, 0) top-left: the mean of spp camera
  * rays through the pixel's square, placed as the aa pattern says (a box
  * filter: SCENES.md's pixel value). */
-vec3 render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st);
+vec3
+render_pixel(const struct renderer *renderer, int px, int py, struct rng *rng, struct stats *st);
+
+/* The driver's tile function (driver.h): each pixel's radiance for the tile's
+ * pass; false when a stop cut the tile short. */
+bool render_tile(const void *ctx, const struct tile *tile, struct stats *st);
 
 #endif /* RENDER_H */

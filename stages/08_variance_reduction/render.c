@@ -282,9 +282,8 @@ adaptive_pixel(const struct renderer *renderer, int px, int py, struct rng *rng,
 }
 
 vec3
-render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+render_pixel(const struct renderer *renderer, int px, int py, struct rng *rng, struct stats *st)
 {
-    const struct renderer *renderer = ctx;
     if (renderer->aa == AA_ADAPTIVE) {
         return adaptive_pixel(renderer, px, py, rng, st);
     }
@@ -292,4 +291,20 @@ render_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
     real hi = -REAL_MAX;
     vec3 sum = sum_samples(renderer, px, py, renderer->aa, renderer->spp, rng, st, &lo, &hi);
     return vec3_scale(sum, 1 / (real)renderer->spp);
+}
+
+bool
+render_tile(const void *ctx, const struct tile *tile, struct stats *st)
+{
+    const struct renderer *renderer = ctx;
+    for (int py = tile->y0; py < tile->y1; py++) {
+        for (int px = tile->x0; px < tile->x1; px++) {
+            if (driver_stop_requested()) {
+                return false; /* after the pixel at hand: a stop comes within a second */
+            }
+            struct rng rng = tile_pixel_rng(tile, px, py); /* the pixel's own stream */
+            tile_put(tile, px, py, render_pixel(renderer, px, py, &rng, st));
+        }
+    }
+    return true;
 }

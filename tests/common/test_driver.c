@@ -10,28 +10,30 @@
 #include "check.h"
 #include "driver.h"
 #include "run.h"
+#include "testlib.h"
 
 /* A pixel function whose value depends on the pixel and its random stream. */
 static vec3
-noisy_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+noisy_pixel(int px, int py, struct rng *rng, struct stats *st)
 {
-    (void)ctx;
     st->rays_camera++;
     return (vec3){(real)px, (real)py, rng_uniform(rng)};
 }
 
 static vec3
-nan_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+nan_pixel(int px, int py, struct rng *rng, struct stats *st)
 {
-    (void)ctx;
     (void)rng;
     (void)st;
     real zero = 0;
     return (px == 3 && py == 5) ? (vec3){zero / zero, 1, 1} : (vec3){1, 1, 1};
 }
 
+static const struct test_pixels noisy = {noisy_pixel};
+static const struct test_pixels nan_at_3_5 = {nan_pixel};
+
 static struct render_job
-job_for(pixel_fn fn, int threads, int passes)
+job_for(const struct test_pixels *pixels, int threads, int passes)
 {
     return (struct render_job){
         .width = 37,
@@ -39,7 +41,8 @@ job_for(pixel_fn fn, int threads, int passes)
         .threads = threads,
         .passes = passes,
         .seed = 3,
-        .pixel = fn,
+        .tile = test_pixels_tile,
+        .ctx = pixels,
     };
 }
 
@@ -50,8 +53,8 @@ TEST(every_pixel_once_and_thread_independent)
     struct render_result r1;
     struct render_result r4;
     struct diag err;
-    struct render_job j1 = job_for(noisy_pixel, 1, 3);
-    struct render_job j4 = job_for(noisy_pixel, 4, 3);
+    struct render_job j1 = job_for(&noisy, 1, 3);
+    struct render_job j4 = job_for(&noisy, 4, 3);
     CHECK(driver_render_image(&j1, &one, &r1, &err));
     CHECK(driver_render_image(&j4, &four, &r4, &err));
     CHECK(memcmp(one.rgb, four.rgb, sizeof(float) * 3 * 37 * 21) == 0);
@@ -70,7 +73,7 @@ TEST(nan_pixels_are_counted_and_zeroed)
     struct image img = {0};
     struct render_result r;
     struct diag err;
-    struct render_job j = job_for(nan_pixel, 2, 2);
+    struct render_job j = job_for(&nan_at_3_5, 2, 2);
     CHECK(driver_render_image(&j, &img, &r, &err));
     CHECK(r.nan_pixels == 1);
     CHECK(image_pixel(&img, 3, 5)[0] == 0);
@@ -85,7 +88,7 @@ TEST(seed_changes_the_image)
     struct image b = {0};
     struct render_result r;
     struct diag err;
-    struct render_job j = job_for(noisy_pixel, 2, 1);
+    struct render_job j = job_for(&noisy, 2, 1);
     CHECK(driver_render_image(&j, &a, &r, &err));
     j.seed = 4;
     CHECK(driver_render_image(&j, &b, &r, &err));
@@ -117,7 +120,7 @@ TEST(shares_add_up_to_the_image)
     struct image whole = {0};
     struct render_result r;
     struct diag err;
-    struct render_job j = job_for(noisy_pixel, 2, 4);
+    struct render_job j = job_for(&noisy, 2, 4);
     CHECK(driver_render_image(&j, &whole, &r, &err));
     static float sum[FLOATS];
     uint64_t rays = 0;
@@ -156,7 +159,7 @@ TEST(progressive_passes_divide_spp)
     const int spp[] = {64, 36, 17, 9, 1, 48000};
     const int per_pass[] = {16, 12, 1, 9, 1, 16};
     for (int i = 0; i < 6; i++) {
-        struct render_job j = job_for(noisy_pixel, 1, 1);
+        struct render_job j = job_for(&noisy, 1, 1);
         CHECK(run_progressive(&j, spp[i], 2.5) == per_pass[i]);
         CHECK(j.passes * per_pass[i] == spp[i] && j.time_limit == 2.5);
     }

@@ -25,6 +25,7 @@
 #include "check.h"
 #include "driver.h"
 #include "scene.h"
+#include "testlib.h"
 #include "trace.h"
 
 /* The fields of a stage's struct hit (geometry.h) that inspect_hit reads. */
@@ -78,9 +79,8 @@ written(const struct trace *t, bool json)
 #define NAN_BELOW 0.3
 
 static vec3
-recording_pixel(const void *ctx, int px, int py, struct rng *rng, struct stats *st)
+recording_pixel(int px, int py, struct rng *rng, struct stats *st)
 {
-    (void)ctx;
     ray r = {{0, 0, 5}, {0, 0, -1}};
     inspect_sample(st, 0, (real)px + (real)0.5, (real)py + (real)0.5, r);
     struct hit h = {.t = 4, .p = {0, 0, 1}, .ng = {0, 0, 1}, .n = {0, 0, 1}, .front_face = true};
@@ -98,8 +98,10 @@ TEST(traced_pixel_is_the_rendered_pixel)
     if (!load(&s)) {
         return;
     }
-    struct render_job job =
-        {.width = 8, .height = 6, .threads = 2, .passes = 4, .seed = 7, .pixel = recording_pixel};
+    const struct test_pixels recording = {recording_pixel};
+    struct render_job job = {.width = 8, .height = 6, .threads = 2, .passes = 4, .seed = 7};
+    job.tile = test_pixels_tile;
+    job.ctx = &recording;
     struct image img = {0};
     struct render_result result;
     struct diag err;

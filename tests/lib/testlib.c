@@ -640,3 +640,19 @@ test_write_texture(const char *name, int lit)
     image_free(&img);
     return ok;
 }
+
+bool
+test_pixels_tile(const void *ctx, const struct tile *tile, struct stats *st)
+{
+    const struct test_pixels *pixels = ctx;
+    for (int py = tile->y0; py < tile->y1; py++) {
+        for (int px = tile->x0; px < tile->x1; px++) {
+            if (driver_stop_requested()) {
+                return false;
+            }
+            struct rng rng = tile_pixel_rng(tile, px, py);
+            tile_put(tile, px, py, pixels->pixel(px, py, &rng, st));
+        }
+    }
+    return true;
+}

@@ -9,6 +9,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "driver.h"
 #include "gltf.h"
 #include "image.h"
 
@@ -151,5 +152,14 @@ double test_srgb8_linear(int k);
  * the sRGB codes (204, 102, 51) and the others are black (written from
  * the codes' linear values; the PNG encoder rounds them back). */
 bool test_write_texture(const char *name, int lit);
+
+/* A driver job of the tests whose value is made per pixel (driver.h): its
+ * ctx is a struct test_pixels, and test_pixels_tile its tile function,
+ * which gives each pixel its own random stream (tile_pixel_rng) as the
+ * stages' render_tile does. */
+struct test_pixels {
+    vec3 (*pixel)(int px, int py, struct rng *rng, struct stats *st);
+};
+bool test_pixels_tile(const void *ctx, const struct tile *tile, struct stats *st);
 
 #endif /* TESTLIB_H */
