@@ -181,7 +181,8 @@ write_one(
     struct diag *err)
 {
     if (path == run->opt.trace_svg_path) {
-        return trace_write_svg(f, trace, image, err);
+        const struct trace_camera camera = {run->aov.ctx, run->aov.camera_ray};
+        return trace_write_svg(f, trace, image, &camera, err);
     }
     if (path == run->opt.trace_path && is_json(path)) {
         trace_write_json(f, trace);

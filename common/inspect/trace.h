@@ -60,13 +60,25 @@ void trace_pass_begin(struct trace *t, int pass);
 void trace_pass_end(struct trace *t, vec3 estimate);
 void trace_set_value(struct trace *t, const float rgb[3]);
 
+/* The stage's camera, as the SVG draws through it: its camera_ray
+ * (camera.h), the ray through a film position in pixels. */
+struct trace_camera {
+    const void *ctx;
+    ray (*camera_ray)(const void *ctx, real film_x, real film_y);
+};
+
 /* The written forms: text (an indented tree, numbers rounded), JSON (every
  * number as printed by %.17g), and SVG (the paths over `image`, the full
- * render, projected through the camera, and in a top view).  Write to an
- * open stream; the caller checks it for errors. */
+ * render, projected through the stage's camera, and in a top view).  Write
+ * to an open stream; the caller checks it for errors. */
 void trace_write_text(FILE *f, const struct trace *t);
 void trace_write_json(FILE *f, const struct trace *t);
-bool trace_write_svg(FILE *f, const struct trace *t, const struct image *image, struct diag *err);
+bool trace_write_svg(
+    FILE *f,
+    const struct trace *t,
+    const struct image *image,
+    const struct trace_camera *camera,
+    struct diag *err);
 
 /* --- what inspect.h forwards to (the recorder's side) -------------------- */
 void trace_log_sample(struct trace *t, int index, real film_x, real film_y, ray r);

@@ -67,169 +67,180 @@ put_png_uri(FILE *f, const struct image *image, struct diag *err)
 
 /* --- the camera's projection ------------------------------------------- */
 
-/* The pinhole camera of the stages (camera.c): its basis and the
- * half-extents of the image plane at distance 1. */
+/* The stage's own camera, inverted: the rays it casts through a few film
+ * positions fix its eye (the point all their lines pass through) and where
+ * each film position lies on the image plane at distance 1 along the
+ * centre ray; a point of the scene projects to the film position whose ray
+ * passes through it. */
 struct view {
-    double origin[3], forward[3], right[3], up[3];
-    double half_width, half_height;
-    double width, height; /* image, pixels */
-    double scale; /* SVG units per image pixel */
+    const struct trace_camera *camera;
+    vec3 origin, forward; /* the eye, and the centre ray's unit direction */
+    vec3 film0, dx, dy; /* film (0, 0) on the plane, and one pixel's step in x and y */
+    real g_xx, g_xy, g_yy, det; /* the Gram matrix of dx, dy, and its determinant */
+    real scale; /* SVG units per image pixel */
 };
 
-static double
-dot3(const double a[3], const double b[3])
+/* Where the camera's ray through film (fx, fy) meets the image plane,
+ * relative to the eye; its origin into *o when o is not NULL. */
+static vec3
+plane_point(const struct view *v, real fx, real fy, vec3 *o)
 {
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
-static void
-unit3(double a[3])
-{
-    double len = sqrt(dot3(a, a));
-    for (int i = 0; i < 3 && len > 0; i++) {
-        a[i] /= len;
+    ray r = v->camera->camera_ray(v->camera->ctx, fx, fy);
+    if (o) {
+        *o = r.o;
     }
-}
-
-static void
-cross3(const double a[3], const double b[3], double out[3])
-{
-    out[0] = a[1] * b[2] - a[2] * b[1];
-    out[1] = a[2] * b[0] - a[0] * b[2];
-    out[2] = a[0] * b[1] - a[1] * b[0];
+    return vec3_scale(r.d, 1 / vec3_dot(r.d, v->forward));
 }
 
 static struct view
-view_make(const struct camera_desc *c, int width, int height)
+view_make(const struct trace_camera *camera, int width, int height)
 {
-    struct view v = {.width = width, .height = height};
-    double target[3];
-    double up[3];
-    trace_svg_to3(c->origin, v.origin);
-    trace_svg_to3(c->target, target);
-    trace_svg_to3(c->up, up);
-    for (int i = 0; i < 3; i++) {
-        v.forward[i] = target[i] - v.origin[i];
-    }
-    unit3(v.forward);
-    cross3(v.forward, up, v.right);
-    unit3(v.right);
-    cross3(v.right, v.forward, v.up);
-    v.half_height = tan((double)c->vfov_deg * 3.14159265358979323846 / 360);
-    v.half_width = v.half_height * width / height;
-    v.scale = PANEL / (width > height ? width : height);
+    struct view v = {.camera = camera};
+    ray centre = camera->camera_ray(camera->ctx, (real)width / 2, (real)height / 2);
+    v.forward = centre.d;
+    /* Camera rays may start on a near plane (scene-format.md's `near`):
+     * the ray through film (0, 0) starts at eye + near p0 and the centre
+     * ray at eye + near forward, so near is the step between their origins
+     * measured along p0 - forward. */
+    vec3 o0;
+    v.film0 = plane_point(&v, 0, 0, &o0);
+    vec3 spread = vec3_sub(v.film0, v.forward);
+    real near = vec3_dot(vec3_sub(o0, centre.o), spread) / vec3_length2(spread);
+    v.origin = vec3_madd(centre.o, v.forward, -near);
+    v.dx = vec3_scale(vec3_sub(plane_point(&v, (real)width, 0, NULL), v.film0), 1 / (real)width);
+    v.dy = vec3_scale(vec3_sub(plane_point(&v, 0, (real)height, NULL), v.film0), 1 / (real)height);
+    v.g_xx = vec3_dot(v.dx, v.dx);
+    v.g_xy = vec3_dot(v.dx, v.dy);
+    v.g_yy = vec3_dot(v.dy, v.dy);
+    v.det = v.g_xx * v.g_yy - v.g_xy * v.g_xy;
+    v.scale = (real)PANEL / (real)(width > height ? width : height);
     return v;
 }
 
 /* Depth of p along the view direction. */
-static double
-depth_of(const struct view *v, const double p[3])
+static real
+depth_of(const struct view *v, vec3 p)
 {
-    double d[3] = {p[0] - v->origin[0], p[1] - v->origin[1], p[2] - v->origin[2]};
-    return dot3(d, v->forward);
+    return vec3_dot(vec3_sub(p, v->origin), v->forward);
 }
 
-/* The film position of p (in front of the camera), in SVG units. */
+/* The film position of p (in front of the camera), in SVG units: p's
+ * point on the image plane, written as film0 + fx dx + fy dy (the normal
+ * equations of the two steps). */
 static void
-project(const struct view *v, const double p[3], double *x, double *y)
+project(const struct view *v, vec3 p, real *x, real *y)
 {
-    double d[3] = {p[0] - v->origin[0], p[1] - v->origin[1], p[2] - v->origin[2]};
-    double z = dot3(d, v->forward);
-    double film_x = (dot3(d, v->right) / z / v->half_width + 1) / 2 * v->width;
-    double film_y = (1 - dot3(d, v->up) / z / v->half_height) / 2 * v->height;
+    vec3 d = vec3_sub(p, v->origin);
+    vec3 q = vec3_sub(vec3_scale(d, 1 / vec3_dot(d, v->forward)), v->film0);
+    real qx = vec3_dot(q, v->dx);
+    real qy = vec3_dot(q, v->dy);
+    real film_x = (v->g_yy * qx - v->g_xy * qy) / v->det;
+    real film_y = (v->g_xx * qy - v->g_xy * qx) / v->det;
     *x = film_x * v->scale;
     *y = film_y * v->scale;
 }
 
 static void
-line(FILE *f, double x0, double y0, double x1, double y1, const struct segment_style *s)
+line(FILE *f, real x0, real y0, real x1, real y1, const struct segment_style *s)
 {
     fprintf(
         f,
         "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\"%s%s%s/>\n",
-        x0,
-        y0,
-        x1,
-        y1,
+        (double)x0,
+        (double)y0,
+        (double)x1,
+        (double)y1,
         s->colour,
         s->dash ? " stroke-dasharray=\"" : "",
         s->dash ? s->dash : "",
         s->dash ? "\"" : "");
 }
 
-/* Segment a-b through the camera, the part behind the near plane cut off. */
+/* Panel position of p through `map`: the camera's view or the top view. */
+typedef void (*panel_map)(const void *map, vec3 p, real *x, real *y);
+
+/* Segment a-b through `to_panel`. */
 static void
-camera_segment(
+panel_line(
     FILE *f,
+    panel_map to_panel,
     const void *map,
-    const double a[3],
-    const double b[3],
+    vec3 a,
+    vec3 b,
     const struct segment_style *s)
 {
-    const struct view *v = map;
-    const double near = 1e-6;
-    double p[3];
-    double q[3];
-    memcpy(p, a, sizeof p);
-    memcpy(q, b, sizeof q);
-    double dp = depth_of(v, p);
-    double dq = depth_of(v, q);
-    if (dp < near && dq < near) {
-        return;
-    }
-    if (dp < near || dq < near) {
-        double t = (near - dp) / (dq - dp);
-        double *cut = dp < near ? p : q;
-        for (int i = 0; i < 3; i++) {
-            cut[i] = a[i] + t * (b[i] - a[i]);
-        }
-    }
-    double x0;
-    double y0;
-    double x1;
-    double y1;
-    project(v, p, &x0, &y0);
-    project(v, q, &x1, &y1);
+    real x0;
+    real y0;
+    real x1;
+    real y1;
+    to_panel(map, a, &x0, &y0);
+    to_panel(map, b, &x1, &y1);
     /* A far end can project far outside the picture: the clip path hides
      * it, but keep the numbers printable. */
-    double lim = 1e6;
+    real lim = (real)1e6;
     if (fabs(x0) < lim && fabs(y0) < lim && fabs(x1) < lim && fabs(y1) < lim) {
         line(f, x0, y0, x1, y1, s);
     }
 }
 
+static void
+view_point(const void *map, vec3 p, real *x, real *y)
+{
+    project(map, p, x, y);
+}
+
+/* Segment a-b through the camera, the part behind the near plane cut off. */
+static void
+camera_segment(FILE *f, const void *map, vec3 a, vec3 b, const struct segment_style *s)
+{
+    const struct view *v = map;
+    /* The cut's depth grows with the eye's distance from the origin: a
+     * point at depth d has its coordinates rounded by about
+     * 1e-16 |origin|, so its projection is good to 1e-16 |origin| / d. */
+    const real near = (real)1e-6 * (1 + vec3_max_comp(vec3_abs(v->origin)));
+    real da = depth_of(v, a);
+    real db = depth_of(v, b);
+    if (da < near && db < near) {
+        return;
+    }
+    if (da < near || db < near) {
+        vec3 cut = vec3_lerp(a, b, (near - da) / (db - da));
+        a = da < near ? cut : a;
+        b = db < near ? cut : b;
+    }
+    panel_line(f, view_point, v, a, b, s);
+}
+
+/* A point of the trace (double, trace_events.h, whatever real is). */
+static vec3
+event_point(const double p[3])
+{
+    return vec3_make((real)p[0], (real)p[1], (real)p[2]);
+}
+
 /* The segment an event draws: a miss is drawn as far as the scene is
  * wide. */
 static void
-event_segment(const struct trace_event *e, double extent, double a[3], double b[3])
+event_segment(const struct trace_event *e, real extent, vec3 *a, vec3 *b)
 {
-    memcpy(a, e->from, 3 * sizeof(double));
-    memcpy(b, e->to, 3 * sizeof(double));
+    *a = event_point(e->from);
+    *b = event_point(e->to);
     if (e->segment == SEG_MISS) {
-        for (int i = 0; i < 3; i++) {
-            b[i] = e->from[i] + extent * e->to[i];
-        }
+        *b = vec3_madd(*a, *b, extent);
     }
 }
 
-/* The legend: a swatch of each colour and what it stands for, wrapped at
- * `width`. */
+static void
+top_point(const void *map, vec3 p, real *x, real *y)
+{
+    trace_svg_top_point(map, p, x, y);
+}
+
 /* Segment a-b in the top view. */
 static void
-top_segment(
-    FILE *f,
-    const void *map,
-    const double a[3],
-    const double b[3],
-    const struct segment_style *s)
+top_segment(FILE *f, const void *map, vec3 a, vec3 b, const struct segment_style *s)
 {
-    double x0;
-    double y0;
-    double x1;
-    double y1;
-    trace_svg_top_point(map, a, &x0, &y0);
-    trace_svg_top_point(map, b, &x1, &y1);
-    line(f, x0, y0, x1, y1, s);
+    panel_line(f, top_point, map, a, b, s);
 }
 
 /* Every segment of the trace, drawn through `map` (the camera's view or
@@ -238,23 +249,24 @@ static void
 draw_segments(
     FILE *f,
     const struct trace *t,
-    double extent,
-    void (
-        *draw)(FILE *, const void *, const double *, const double *, const struct segment_style *),
+    real extent,
+    void (*draw)(FILE *, const void *, vec3, vec3, const struct segment_style *),
     const void *map)
 {
     for (int i = 0; i < t->n_events; i++) {
         const struct trace_event *e = &t->events[i];
         const struct segment_style *style = style_of(e->segment);
         if (style) {
-            double a[3];
-            double b[3];
-            event_segment(e, extent, a, b);
+            vec3 a;
+            vec3 b;
+            event_segment(e, extent, &a, &b);
             draw(f, map, a, b, style);
         }
     }
 }
 
+/* The legend: a swatch of each colour and what it stands for, wrapped at
+ * `width`. */
 static void
 legend(FILE *f, double y, double width)
 {
@@ -280,20 +292,25 @@ legend(FILE *f, double y, double width)
 }
 
 bool
-trace_write_svg(FILE *f, const struct trace *t, const struct image *image, struct diag *err)
+trace_write_svg(
+    FILE *f,
+    const struct trace *t,
+    const struct image *image,
+    const struct trace_camera *camera,
+    struct diag *err)
 {
     const struct scene *s = t->scene;
-    struct view v = view_make(&s->camera, image->width, image->height);
-    double img_w = image->width * v.scale;
-    double img_h = image->height * v.scale;
-    struct top top = {.x0 = img_w + GAP, .b = trace_svg_scene_bounds(s)};
-    double span_x = top.b.hi[0] - top.b.lo[0];
-    double span_z = top.b.hi[2] - top.b.lo[2];
+    struct view v = view_make(camera, image->width, image->height);
+    double img_w = image->width * (double)v.scale;
+    double img_h = image->height * (double)v.scale;
+    struct top top = {.x0 = (real)(img_w + GAP), .b = trace_svg_scene_bounds(s)};
+    double span_x = (double)(top.b.hi.x - top.b.lo.x);
+    double span_z = (double)(top.b.hi.z - top.b.lo.z);
     double span = fmax(fmax(span_x, span_z), 1e-30);
-    top.scale = PANEL / span;
-    double extent = span * 2;
-    double width = fmax(top.x0 + span_x * top.scale, LEGEND_WIDTH);
-    double height = fmax(img_h, span_z * top.scale) + LEGEND_HEIGHT;
+    top.scale = (real)(PANEL / span);
+    real extent = (real)(span * 2);
+    double width = fmax(img_w + GAP + span_x * (double)top.scale, LEGEND_WIDTH);
+    double height = fmax(img_h, span_z * (double)top.scale) + LEGEND_HEIGHT;
     fprintf(
         f,
         "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"

@@ -8,23 +8,14 @@
 
 #include "trace_svg.h"
 
+/* Grow b to hold p (a point that is not finite is left out). */
 static void
-grow(struct bounds *b, const double p[3])
+grow_vec(struct bounds *b, vec3 p)
 {
-    for (int i = 0; i < 3; i++) {
-        if (isfinite(p[i])) {
-            b->lo[i] = fmin(b->lo[i], p[i]);
-            b->hi[i] = fmax(b->hi[i], p[i]);
-        }
+    if (vec3_is_finite(p)) {
+        b->lo = vec3_min(b->lo, p);
+        b->hi = vec3_max(b->hi, p);
     }
-}
-
-static void
-grow_vec(struct bounds *b, vec3 v)
-{
-    double p[3];
-    trace_svg_to3(v, p);
-    grow(b, p);
 }
 
 static void
@@ -46,7 +37,7 @@ grow_sphere(struct bounds *b, vec3 c, real r)
 struct bounds
 trace_svg_scene_bounds(const struct scene *s)
 {
-    struct bounds b = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    struct bounds b = {vec3_splat(REAL_MAX), vec3_splat(-REAL_MAX)};
     grow_vec(&b, s->camera.origin);
     for (int i = 0; i < s->n_spheres; i++) {
         grow_sphere(&b, s->spheres[i].center, s->spheres[i].radius);
@@ -71,10 +62,10 @@ trace_svg_scene_bounds(const struct scene *s)
 }
 
 void
-trace_svg_top_point(const struct top *t, const double p[3], double *x, double *y)
+trace_svg_top_point(const struct top *t, vec3 p, real *x, real *y)
 {
-    *x = t->x0 + (p[0] - t->b.lo[0]) * t->scale;
-    *y = (p[2] - t->b.lo[2]) * t->scale;
+    *x = t->x0 + (p.x - t->b.lo.x) * t->scale;
+    *y = (p.z - t->b.lo.z) * t->scale;
 }
 
 static void
@@ -82,12 +73,10 @@ top_polygon(FILE *f, const struct top *t, const vec3 *corners, int n, const char
 {
     fprintf(f, "<polygon fill=\"%s\" stroke=\"#555\" stroke-width=\"0.5\" points=\"", fill);
     for (int i = 0; i < n; i++) {
-        double p[3];
-        double x;
-        double y;
-        trace_svg_to3(corners[i], p);
-        trace_svg_top_point(t, p, &x, &y);
-        fprintf(f, "%.2f,%.2f ", x, y);
+        real x;
+        real y;
+        trace_svg_top_point(t, corners[i], &x, &y);
+        fprintf(f, "%.2f,%.2f ", (double)x, (double)y);
     }
     fprintf(f, "\"/>\n");
 }
@@ -95,18 +84,16 @@ top_polygon(FILE *f, const struct top *t, const vec3 *corners, int n, const char
 static void
 top_circle(FILE *f, const struct top *t, vec3 c, real r, const char *fill)
 {
-    double p[3];
-    double x;
-    double y;
-    trace_svg_to3(c, p);
-    trace_svg_top_point(t, p, &x, &y);
+    real x;
+    real y;
+    trace_svg_top_point(t, c, &x, &y);
     fprintf(
         f,
         "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"%s\" stroke=\"#555\" "
         "stroke-width=\"0.5\"/>\n",
-        x,
-        y,
-        (double)r * t->scale,
+        (double)x,
+        (double)y,
+        (double)(r * t->scale),
         fill);
 }
 
@@ -161,25 +148,23 @@ trace_svg_top_shapes(FILE *f, const struct top *t, const struct scene *s)
             s->sphere_lights[i].radius,
             "rgba(255,220,0,0.6)");
     }
+    real x;
+    real y;
     for (int i = 0; i < s->n_point_lights; i++) {
-        double p[3];
-        double x;
-        double y;
-        trace_svg_to3(s->point_lights[i].position, p);
-        trace_svg_top_point(t, p, &x, &y);
-        fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"4\" fill=\"#ffd400\"/>\n", x, y);
+        trace_svg_top_point(t, s->point_lights[i].position, &x, &y);
+        fprintf(
+            f,
+            "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"4\" fill=\"#ffd400\"/>\n",
+            (double)x,
+            (double)y);
     }
-    double cam[3];
-    double x;
-    double y;
-    trace_svg_to3(s->camera.origin, cam);
-    trace_svg_top_point(t, cam, &x, &y);
+    trace_svg_top_point(t, s->camera.origin, &x, &y);
     fprintf(
         f,
         "<rect x=\"%.2f\" y=\"%.2f\" width=\"8\" height=\"8\" fill=\"#000\"/>"
         "<text x=\"%.2f\" y=\"%.2f\" font-size=\"11\">camera</text>\n",
-        x - 4,
-        y - 4,
-        x + 6,
-        y - 6);
+        (double)x - 4,
+        (double)y - 4,
+        (double)x + 6,
+        (double)y - 6);
 }

@@ -7,12 +7,16 @@
  *   - the JSON form is valid (python3's json; the value is the mean of the
  *     passes), names the primitive and the material by the scene's lines;
  *   - the text form goes to standard output with --pixel alone;
- *   - --trace-svg is well-formed SVG and renders in headless Chromium;
+ *   - --trace-svg is well-formed SVG and renders in headless Chromium; its
+ *     camera rays, drawn through the stage's own camera, land in the
+ *     traced pixel's square, with camera rays that start at the eye or on
+ *     a near plane;
  *   - the usage errors: --trace or --trace-svg without --pixel, a pixel
  *     outside the image (the message gives the range), a trace that is
  *     another output; none writes a file.
  */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "browser.h"
@@ -188,6 +192,82 @@ TEST(svg_is_valid_and_renders_in_chromium)
     image_free(&shot);
 }
 
+/* How many of the camera-ray lines (yellow, style_of in trace_svg.c) of
+ * the SVG's film panel (the part before the top view) have an end outside
+ * pixel (px, py)'s square of `scale` units (plus half a unit for the
+ * printed rounding); *n_lines counts them all. */
+static int
+camera_lines_outside(char *svg, int px, int py, double scale, int *n_lines)
+{
+    int outside = 0;
+    *n_lines = 0;
+    char *top_view = strstr(svg, "id=\"top-view\"");
+    if (top_view) {
+        *top_view = '\0';
+    }
+    for (const char *at = strstr(svg, "<line "); at; at = strstr(at + 1, "<line ")) {
+        const char *end = strchr(at, '>');
+        const char *yellow = strstr(at, "stroke=\"#ffd400\"");
+        double x[2];
+        double y[2];
+        if (!end || !yellow || yellow > end
+            || sscanf(
+                   at,
+                   "<line x1=\"%lf\" y1=\"%lf\" x2=\"%lf\" y2=\"%lf\"",
+                   &x[0],
+                   &y[0],
+                   &x[1],
+                   &y[1])
+                   != 4) {
+            continue;
+        }
+        (*n_lines)++;
+        for (int i = 0; i < 2; i++) {
+            bool in_x = x[i] >= px * scale - 0.5 && x[i] <= (px + 1) * scale + 0.5;
+            bool in_y = y[i] >= py * scale - 0.5 && y[i] <= (py + 1) * scale + 0.5;
+            outside += !(in_x && in_y);
+        }
+    }
+    return outside;
+}
+
+/* The camera rays of the picture are projected through the stage's own
+ * camera: each lands in the traced pixel's square (30 SVG units a pixel:
+ * the 480-unit panel over 16 pixels), for rays from the eye and for rays
+ * that start on a near plane (the projection must find the eye behind
+ * them, not take their origins for it). */
+TEST(svg_camera_rays_land_in_their_pixel)
+{
+    static const char *const nears[] = {"0", "2.5"};
+    for (int k = 0; k < 2; k++) {
+        char name[32];
+        snprintf(name, sizeof name, "near%d.scene", k);
+        const char *scene = stagecheck_scene(
+            name,
+            "camera origin 0 1.5 4 target 0 0.5 0 up 0 1 0 fov 40 near %s\n%s",
+            nears[k],
+            strchr(scene_text, '\n') + 1);
+        const char *svg = test_tmp_path("near.svg");
+        const char *const args[] = {"--pixel", "3,9", "-s", "4", "--trace-svg", svg, NULL};
+        char out[CAP];
+        int status = test_render(scene, args, out, sizeof out);
+        CHECK_MSG(status == 0, "near %s: exit %d\n%s", nears[k], status, out);
+        char *text = test_read_file(svg, NULL);
+        CHECK_MSG(text != NULL, "near %s: no SVG", nears[k]);
+        if (text) {
+            int n_lines;
+            int outside = camera_lines_outside(text, 3, 9, 30, &n_lines);
+            CHECK_MSG(n_lines > 0, "near %s: no camera ray drawn", nears[k]);
+            CHECK_MSG(
+                outside == 0,
+                "near %s: %d camera-ray ends outside pixel (3, 9)",
+                nears[k],
+                outside);
+            free(text);
+        }
+    }
+}
+
 /* A command line that is refused with exit 2, a message holding `says`,
  * and no file written. */
 static void
@@ -243,5 +323,6 @@ TEST_MAIN(
     TEST_ENTRY(json_is_valid_and_names_by_line),
     TEST_ENTRY(text_trace_on_standard_output),
     TEST_ENTRY(svg_is_valid_and_renders_in_chromium),
+    TEST_ENTRY(svg_camera_rays_land_in_their_pixel),
     TEST_ENTRY(usage_errors),
     TEST_ENTRY(image_only_when_asked))
