@@ -79,39 +79,6 @@ aov_path(const char *image_path, enum aov_pass pass, char *buf, size_t cap)
     return n >= 0 && (size_t)n < cap;
 }
 
-/* Which of two colours a solid checkerboard of cubes of edge `size` (a
- * corner at the origin) has at p. */
-static bool
-checker_second(vec3 p, real size)
-{
-    real cells = floor(p.x / size) + floor(p.y / size) + floor(p.z / size);
-    return fabs(fmod(cells, (real)2)) > (real)0.5;
-}
-
-/* The diffuse colour (Blender's DiffCol): none for mirror and glass. */
-static vec3
-albedo_at(const struct scene *s, const struct aov_hit *h)
-{
-    if (h->material < 0) {
-        return vec3_splat(0);
-    }
-    const struct material *m = &s->materials[h->material];
-    switch (m->kind) {
-    case MAT_DIFFUSE:
-    case MAT_BLEND:
-        return m->albedo;
-    case MAT_CHECKER:
-        /* Below a surface lying on a cube face, as the stages shade it. */
-        return checker_second(vec3_sub(h->p, vec3_splat(aov_offset_at(h->p))), m->checker_size)
-                   ? m->albedo2
-                   : m->albedo;
-    case MAT_MIRROR:
-    case MAT_GLASS:
-        break;
-    }
-    return vec3_splat(0);
-}
-
 void
 aov_pixel(
     const struct aov_source *src,
@@ -134,7 +101,7 @@ aov_pixel(
     }
     out[AOV_DEPTH] = vec3_splat(vec3_length(vec3_sub(h.p, scene->camera.origin)));
     out[AOV_NORMAL] = h.n;
-    out[AOV_ALBEDO] = albedo_at(scene, &h);
+    out[AOV_ALBEDO] = h.albedo;
     out[AOV_ID] = vec3_splat((real)h.prim);
     out[AOV_MATERIAL] = vec3_splat((real)h.material);
     /* The label alone costs shadow rays: only when asked for. */

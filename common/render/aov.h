@@ -5,12 +5,13 @@
  * label of what kind of light reaches it (docs/aov.md).
  *
  * A pass's value is that of the ray through the pixel's centre, whatever
- * the stage's sampling: the passes are the same in every stage and every
- * run, with no noise.  The stage supplies two functions (its camera ray
- * and its first-hit query, struct aov_source); everything else is here, so
- * the passes describe the scene, not the stage's approximation of its
- * light: the `feature` label counts shadow rays from a fixed grid of points
- * on every light, and does not depend on the stage's shadow sampling.
+ * the stage's sampling: the passes have no noise.  Every ray is the
+ * stage's own (struct aov_source: its camera ray, its first-hit query with
+ * the albedo it shades with, its ray off a surface); what is here is the
+ * bookkeeping, so the passes describe the scene, not the stage's
+ * approximation of its light: the `feature` label counts shadow rays from
+ * a fixed grid of points on every light, and does not depend on the
+ * stage's shadow sampling.
  */
 #ifndef AOV_H
 #define AOV_H
@@ -65,15 +66,23 @@ struct aov_hit {
     vec3 n; /* shading normal, unit, on the side the ray came from */
     int prim; /* index in the stage's primitive list */
     int material; /* index in scene->materials; -1 for a light's surface */
+    vec3 albedo; /* the diffuse albedo the stage shades the point with */
+    vec3 ng; /* the stage's geometric normal, and its bound on p's */
+    real error; /* rounding error: what its spawn_ray_to needs */
 };
 
 /* What a stage supplies: the ray through a film position in pixels
- * (camera.h's camera_ray) and the closest hit along a ray with t in
- * (0, t_max) (geometry.h's world_intersect). */
+ * (camera.h's camera_ray), the closest hit along a ray with t in
+ * (0, t_max) (geometry.h's world_intersect, the albedo from render.c), and
+ * the ray from a hit towards a point (geometry.h's spawn_ray_to: the
+ * stage's own offset off the surface, and t_max short of the point); NULL
+ * in a stage without shadow rays, whose feature pass then sees nothing in
+ * the way of any light, as the stage does (01_raycast). */
 struct aov_source {
     const void *ctx;
     ray (*camera_ray)(const void *ctx, real film_x, real film_y);
     bool (*first_hit)(const void *ctx, ray r, real t_max, struct aov_hit *out);
+    ray (*spawn_ray_to)(const void *ctx, const struct aov_hit *from, vec3 to, real *t_max);
 };
 
 /* Parse a comma-separated list of pass names into a bit set (bit
@@ -124,8 +133,5 @@ bool aov_render(
 /* The label of a surface point (exposed for tests). */
 enum aov_label
 aov_label_at(const struct aov_source *src, const struct scene *scene, const struct aov_hit *h);
-/* How far off a surface at p the passes start a ray: REL_OFFSET of p's
- * magnitude (aov_label.c). */
-real aov_offset_at(vec3 p);
 
 #endif /* AOV_H */

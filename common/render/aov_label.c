@@ -6,8 +6,10 @@
  * would receive with nothing in the way (each light's unoccluded
  * irradiance, summed over a fixed grid of points on every light) reaches it
  * unblocked, blocked, or only through glass.  The grid is the same for
- * every pixel, run and stage: the label is a property of the scene, and a
- * reference's label mask is meaningful for any render of it.
+ * every pixel, run and stage, and its shadow rays leave a surface as the
+ * stage's own do (its spawn_ray_to): the label is a property of the scene,
+ * and a reference's label mask is meaningful for any render of it.  A
+ * stage that casts no shadow rays (01_raycast) sees nothing in the way.
  */
 #include <math.h>
 
@@ -16,24 +18,12 @@
 /* Glass surfaces a shadow ray may cross before it counts as blocked. */
 #define MAX_CROSSINGS 16
 
-/* Shadow rays start this far (relative to the point's magnitude) off the
- * surface and stop as far short of the light: in float, 1e-4 is about 800
- * units in the last place, far beyond the rounding of a hit point, and in
- * any scene of the format a surface thinner than that is not meant. */
-#define REL_OFFSET ((real)1e-4)
-
 /* The mean of the three channels: how bright a radiance or intensity is,
  * for weighing lights against each other. */
 static real
 brightness(vec3 c)
 {
     return (c.x + c.y + c.z) / 3;
-}
-
-real
-aov_offset_at(vec3 p)
-{
-    return REL_OFFSET * (1 + vec3_max_comp(vec3_abs(p)));
 }
 
 /* What a shadow ray from p finds on its way to q. */
@@ -49,30 +39,27 @@ is_glass(const struct scene *s, int material)
     return material >= 0 && s->materials[material].kind == MAT_GLASS;
 }
 
-/* Follow the segment from p (on a surface of normal n, on the side q is)
- * to q, crossing glass. */
+/* Follow the segment from the hit to q, crossing glass: each ray leaves
+ * its surface as the stage's own rays do (its spawn_ray_to).  A stage
+ * without it casts no shadow rays: nothing is in the way. */
 static enum sight
-sight_to(const struct aov_source *src, const struct scene *s, vec3 p, vec3 n, vec3 q)
+sight_to(const struct aov_source *src, const struct scene *s, const struct aov_hit *from, vec3 q)
 {
-    vec3 o = vec3_madd(p, n, aov_offset_at(p));
+    if (!src->spawn_ray_to) {
+        return SIGHT_CLEAR;
+    }
+    struct aov_hit at = *from;
     bool glass = false;
     for (int crossing = 0; crossing <= MAX_CROSSINGS; crossing++) {
-        vec3 to_q = vec3_sub(q, o);
-        real dist = vec3_length(to_q);
-        real t_max = dist - aov_offset_at(q);
-        if (t_max <= 0) {
+        real t_max;
+        ray r = src->spawn_ray_to(src->ctx, &at, q, &t_max);
+        if (!(t_max > 0) || !src->first_hit(src->ctx, r, t_max, &at)) {
             break;
         }
-        ray r = {o, vec3_div(to_q, dist)};
-        struct aov_hit h;
-        if (!src->first_hit(src->ctx, r, t_max, &h)) {
-            break;
-        }
-        if (!is_glass(s, h.material)) {
+        if (!is_glass(s, at.material)) {
             return SIGHT_BLOCKED;
         }
         glass = true;
-        o = vec3_madd(h.p, r.d, aov_offset_at(h.p));
     }
     return glass ? SIGHT_THROUGH_GLASS : SIGHT_CLEAR;
 }
@@ -83,11 +70,12 @@ struct light_tally {
     real total, clear, through_glass;
 };
 
-/* A diffuse point being labelled: where it is, its normal, the scene and
+/* A diffuse point being labelled: the stage's hit there, the scene and
  * the stage's ray queries. */
 struct receiver {
     const struct aov_source *src;
     const struct scene *scene;
+    const struct aov_hit *hit;
     vec3 p, n;
 };
 
@@ -98,7 +86,7 @@ tally(struct light_tally *t, const struct receiver *at, vec3 q, real weight)
         return;
     }
     t->total += weight;
-    switch (sight_to(at->src, at->scene, at->p, at->n, q)) {
+    switch (sight_to(at->src, at->scene, at->hit, q)) {
     case SIGHT_CLEAR:
         t->clear += weight;
         break;
@@ -208,9 +196,11 @@ tally_light(struct light_tally *t, const struct receiver *at, int light, int k)
 /* The label of a diffuse point: how much of its unoccluded direct light
  * reaches it. */
 static enum aov_label
-diffuse_label(const struct aov_source *src, const struct scene *s, vec3 p, vec3 n)
+diffuse_label(const struct aov_source *src, const struct scene *s, const struct aov_hit *h)
 {
-    const struct receiver at = {src, s, p, n};
+    vec3 p = h->p;
+    vec3 n = h->n;
+    const struct receiver at = {src, s, h, p, n};
     struct light_tally t = {0};
     for (int i = 0; i < s->n_point_lights; i++) {
         const struct point_light *light = &s->point_lights[i];
@@ -247,5 +237,5 @@ aov_label_at(const struct aov_source *src, const struct scene *scene, const stru
     case MAT_CHECKER:
         break;
     }
-    return diffuse_label(src, scene, h->p, h->n);
+    return diffuse_label(src, scene, h);
 }

@@ -10,7 +10,7 @@
 /* The Lambertian albedo this stage shades a material with.  Materials whose
  * optics arrive in a later stage get the simplification feature_table.c
  * states for them. */
-static vec3
+vec3
 diffuse_albedo(const struct material *m)
 {
     switch (m->kind) {

@@ -23,6 +23,9 @@ struct renderer {
     struct camera camera;
 };
 
+/* The Lambertian albedo this stage shades material m with (render.c). */
+vec3 diffuse_albedo(const struct material *m);
+
 /* Radiance leaving the surface at h towards the ray's origin. */
 vec3 shade(const struct renderer *renderer, const struct hit *h, struct stats *st);
 

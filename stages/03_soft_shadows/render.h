@@ -26,6 +26,9 @@ struct renderer {
     struct shadow_sampling shadow;
 };
 
+/* The Lambertian albedo this stage shades material m with (render.c). */
+vec3 diffuse_albedo(const struct material *m);
+
 /* Radiance leaving the surface at h towards the ray's origin. */
 vec3 shade(const struct renderer *renderer, const struct hit *h, struct rng *rng, struct stats *st);
 

@@ -36,7 +36,7 @@ checker_albedo(const struct material *m, const struct hit *h)
 
 /* The Lambertian albedo of a material's diffuse part (none for mirror and
  * glass). */
-static vec3
+vec3
 diffuse_albedo(const struct material *m, const struct hit *h)
 {
     switch (m->kind) {

@@ -28,6 +28,9 @@ struct renderer {
     int max_depth; /* longest chain of rays, the camera ray included */
 };
 
+/* The Lambertian albedo this stage shades material m with at h (render.c). */
+vec3 diffuse_albedo(const struct material *m, const struct hit *h);
+
 /* Radiance leaving the surface at h (where r hit it) towards r's origin;
  * r is the depth-th ray of its chain. */
 vec3 shade(

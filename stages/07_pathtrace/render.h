@@ -64,6 +64,9 @@ struct renderer {
     real time_limit; /* seconds; 0: none */
 };
 
+/* The Lambertian albedo this stage shades material m with at h (render.c). */
+vec3 diffuse_albedo(const struct material *m, const struct hit *h);
+
 /* A path being traced: its throughput beta (the product of the sampling
  * weights so far), whether its last bounce was specular, and its length. */
 struct path {
