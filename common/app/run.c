@@ -96,18 +96,6 @@ run_job(const struct run *run, const void *ctx)
     return job;
 }
 
-int
-run_progressive(struct render_job *job, int spp, double time_limit)
-{
-    int per_pass = spp < 16 ? spp : 16;
-    while (spp % per_pass != 0) {
-        per_pass--;
-    }
-    job->passes = spp / per_pass;
-    job->time_limit = time_limit;
-    return per_pass;
-}
-
 bool
 run_check_job(const struct render_job *job, int spp_per_pass, struct diag *err)
 {

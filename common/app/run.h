@@ -75,16 +75,8 @@ bool run_check_identities(struct run *run, const struct named_file *inputs, int 
 /* The job every stage starts from: the image size (the scene's, or -W/-H
  * keeping its aspect ratio), the threads, the seed, the progress bar, one
  * pass over ctx.  The stage sets its tile function (a progressive stage
- * also its passes and its time budget). */
+ * also its passes and its time budget: 07's progressive_passes). */
 struct render_job run_job(const struct run *run, const void *ctx);
-
-/* Progressive rendering: spp camera samples per pixel as passes of a few
- * samples, each pass a pattern of its own, so that the render can stop
- * after any pass (Ctrl-C, or time_limit seconds, 0: none) and the image is
- * the mean of the passes done.  A pass takes the largest divisor of spp up
- * to 16: short (a Ctrl-C loses little), yet stratified.  Sets the job's
- * passes and time limit; returns the samples per pixel of one pass. */
-int run_progressive(struct render_job *job, int spp, double time_limit);
 
 /* Check that the job can be run at all before anything is allocated for
  * it: the one place for limits on the work a command line may ask for.

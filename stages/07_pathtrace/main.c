@@ -157,15 +157,31 @@ pass_spawn_ray_to(const void *ctx, const struct aov_hit *from, vec3 to, real *t_
     return spawn_ray_to(&h, to, t_max);
 }
 
+/* Progressive rendering: spp camera samples per pixel as passes of a few
+ * samples, each pass a pattern of its own, so that --time or a Ctrl-C can
+ * stop the render after any pass and the image is the mean of the passes
+ * done.  A pass takes the largest divisor of spp up to 16: short (a stop
+ * loses little), yet stratified.  Returns the samples of one pass. */
+static int
+progressive_passes(struct render_job *job, int spp, double time_limit)
+{
+    int per_pass = spp < 16 ? spp : 16;
+    while (spp % per_pass != 0) {
+        per_pass--;
+    }
+    job->passes = spp / per_pass;
+    job->time_limit = time_limit;
+    return per_pass;
+}
+
 /* spp camera rays through each pixel, in passes. */
 static int
 render(struct renderer *renderer, struct run *run)
 {
     struct render_job job = run_job(run, renderer);
     job.tile = render_tile;
-    /* Progressive (run.h): passes of a few samples, so that --time or a
-     * Ctrl-C can stop it after any pass; renderer->spp becomes a pass's. */
-    renderer->spp = run_progressive(&job, renderer->spp, renderer->time_limit);
+    /* renderer->spp becomes a pass's. */
+    renderer->spp = progressive_passes(&job, renderer->spp, renderer->time_limit);
     renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
     run->rep.extra_names[STAT_PENUMBRA] = "penumbra_pixels";
     run->rep.extra_names[STAT_AA_REFINED] = "aa_refined_pixels";

@@ -3,13 +3,13 @@
  * images independent of the thread count, passes averaged, NaN pixels
  * counted and guarded, statistics summed over threads; shares of the
  * tiles (render_share, the browser build's workers) that add up to the
- * whole image bit for bit; spp split into progressive passes (run.h).
+ * whole image bit for bit.  (How stage 07 splits spp into passes:
+ * tests/stage/07_progressive.c.)
  */
 #include <string.h>
 
 #include "check.h"
 #include "driver.h"
-#include "run.h"
 #include "testlib.h"
 
 /* A pixel function whose value depends on the pixel and its random stream. */
@@ -152,22 +152,8 @@ TEST(shares_add_up_to_the_image)
     image_free(&whole);
 }
 
-/* A pass has the largest divisor of spp up to 16, and the passes hold
- * every sample: 64 = 4 x 16, 36 = 3 x 12, 17 (prime) = 17 x 1, 9 = 1 x 9. */
-TEST(progressive_passes_divide_spp)
-{
-    const int spp[] = {64, 36, 17, 9, 1, 48000};
-    const int per_pass[] = {16, 12, 1, 9, 1, 16};
-    for (int i = 0; i < 6; i++) {
-        struct render_job j = job_for(&noisy, 1, 1);
-        CHECK(run_progressive(&j, spp[i], 2.5) == per_pass[i]);
-        CHECK(j.passes * per_pass[i] == spp[i] && j.time_limit == 2.5);
-    }
-}
-
 TEST_MAIN(
     TEST_ENTRY(every_pixel_once_and_thread_independent),
     TEST_ENTRY(nan_pixels_are_counted_and_zeroed),
     TEST_ENTRY(seed_changes_the_image),
-    TEST_ENTRY(shares_add_up_to_the_image),
-    TEST_ENTRY(progressive_passes_divide_spp))
+    TEST_ENTRY(shares_add_up_to_the_image))

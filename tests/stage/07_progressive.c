@@ -18,12 +18,15 @@
  *    exit status is 130 (the shell's code for death by SIGINT; CONTRACT.md:
  *    "on any failure no output file is created").
  *  - nan_pixels is 0 in every run that writes an image.
+ *  - --spp N is split into passes of the largest divisor of N up to 16
+ *    (progressive_passes, main.c), as a traced pixel's passes show.
  *
  * Grading: make grade FULL=1 only (its renders stop after a time or a
  * signal, so what they hold depends on the machine's load: a score must
  * not; and it tests the given driver, not the lab's functions).
  */
 #include <signal.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "check.h"
@@ -31,6 +34,7 @@
 #include "pathcheck.h"
 #include "stagecheck.h"
 #include "testlib.h"
+#include "tracecheck.h"
 
 #define SIZE 64
 #define FACTOR (256 / SIZE)
@@ -78,6 +82,26 @@ noise_constant(void)
         printf("64 spp uninterrupted: spp * relMSE = %.3g\n", c);
     }
     return c;
+}
+
+/* 64 = 4 x 16, 36 = 3 x 12, 17 (prime) = 17 x 1, 9 = 1 x 9, 1 = 1 x 1:
+ * each pass as large as a divisor of spp up to 16 lets it be. */
+TEST(spp_is_split_into_passes_of_at_most_16)
+{
+    static const int spp[] = {64, 36, 17, 9, 1};
+    static const int passes[] = {4, 3, 17, 1, 1};
+    for (int i = 0; i < 5; i++) {
+        char n[16];
+        snprintf(n, sizeof n, "%d", spp[i]);
+        const char *const args[] = {"-W", "8", "-H", "8", "--spp", n, NULL};
+        const char *trace =
+            tracecheck_pixel(test_root_path("scenes/cornell_diffuse_area.scene"), 3, 3, args);
+        CHECK(trace != NULL);
+        if (trace) {
+            int got = tracecheck_count(trace, "\"estimate\": ");
+            CHECK_MSG(got == passes[i], "--spp %d: %d passes, not %d", spp[i], got, passes[i]);
+        }
+    }
 }
 
 TEST(time_budget_stops_after_whole_passes)
@@ -236,6 +260,7 @@ TEST(interrupt_before_the_first_pass_writes_nothing)
 }
 
 TEST_MAIN(
+    TEST_ENTRY(spp_is_split_into_passes_of_at_most_16),
     TEST_ENTRY(time_budget_stops_after_whole_passes),
     TEST_ENTRY(interrupt_keeps_the_complete_passes),
     TEST_ENTRY(interrupt_before_the_first_pass_writes_nothing))
