@@ -7,8 +7,10 @@ include $(ROOT)/common/config.mk
 
 override STAGE := $(notdir $(CURDIR))
 override OUT := $(BUILDROOT)$(STAGE)
-override OBJS := $(SRCS:%.c=$(OUT)/%.o)
-override STAGE_CPPFLAGS := -DSTAGE_NAME=\"$(STAGE)\"
+# Every stage links the course's table (stages/course.c: which stage
+# models which scene feature), which lives beside the stages, not in common/.
+override OBJS := $(SRCS:%.c=$(OUT)/%.o) $(OUT)/course.o
+override STAGE_CPPFLAGS := -DSTAGE_NAME=\"$(STAGE)\" -I$(ROOT)/stages
 FLAGS_STAMP := $(call flags_stamp,$(OUT),$(CC) $(ALL_CPPFLAGS) $(STAGE_CPPFLAGS) $(ALL_CFLAGS) \
     | $(LINK) $(ALL_LDFLAGS) $(ALL_LDLIBS) | $(SRCS))
 
@@ -18,6 +20,10 @@ $(OUT)/render: $(OBJS) $(COMMON_LIB) $(FLAGS_STAMP)
 	$(LINK) $(ALL_LDFLAGS) -o $@ $(OBJS) $(COMMON_LIB) $(ALL_LDLIBS)
 
 $(OUT)/%.o: %.c $(FLAGS_STAMP)
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CPPFLAGS) $(STAGE_CPPFLAGS) $(ALL_CFLAGS) -MMD -MP -c -o $@ $<
+
+$(OUT)/course.o: $(ROOT)/stages/course.c $(FLAGS_STAMP)
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CPPFLAGS) $(STAGE_CPPFLAGS) $(ALL_CFLAGS) -MMD -MP -c -o $@ $<
 

@@ -9,7 +9,6 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "feature_table.h"
 #include "image.h"
 #include "run_outputs.h"
 #include "signals.h"

@@ -60,11 +60,23 @@ struct run {
  * or --version). */
 bool run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage);
 
+/* What a stage says of the scene features it does not model: up to max
+ * notes, one per feature s uses and `modelled` lacks, each "what is not
+ * modelled; what the stage does instead" (stages/course.h's
+ * course_unmodelled: the stages, not common/, know the course). */
+typedef int (*unmodelled_fn)(
+    const struct scene *s,
+    unsigned modelled,
+    const char *stage,
+    struct diag *notes,
+    int max);
+
 /* Load the scene, check that no output is one of the files it read
  * (meshes), and warn, once per feature, about what `modelled` (the stage's
- * RENDER_FEATURES) lacks; under --strict that refuses the scene.  False:
- * main() returns run->status. */
-bool run_load_scene(struct run *run, unsigned modelled);
+ * RENDER_FEATURES) lacks, in the words of `unmodelled`, then the scene's
+ * own notes (what no stage models); under --strict that refuses the scene.
+ * False: main() returns run->status. */
+bool run_load_scene(struct run *run, unsigned modelled, unmodelled_fn unmodelled);
 /* The image's size: the scene's, or -W/-H's (one of them alone keeps the
  * scene's aspect ratio). */
 void run_image_size(const struct scene *scene, const struct options *opt, int *width, int *height);

@@ -7,11 +7,10 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "feature_table.h"
 #include "run.h"
 
 /* A note says what is not modelled and, after its first "; ", what the
- * stage does instead (feature_table.h); under --strict the stage does
+ * stage does instead (run.h's unmodelled_fn); under --strict the stage does
  * nothing instead, so that part is replaced by the refusal. */
 static void
 print_unmodelled(const struct diag *note, bool strict)
@@ -27,13 +26,18 @@ print_unmodelled(const struct diag *note, bool strict)
     diag_print(stderr, &refused, "error");
 }
 
-/* Say, once per feature, what this stage does not model; under --strict
- * that is an error.  Returns false when the scene is refused. */
+/* Say, once per feature, what this stage does not model, then what no
+ * stage models (the scene's notes); under --strict that is an error.
+ * Returns false when the scene is refused. */
 static bool
-report_unmodelled(const struct run *run, unsigned modelled)
+report_unmodelled(const struct run *run, unsigned modelled, unmodelled_fn unmodelled)
 {
-    struct diag notes[UNMODELLED_MAX];
-    int n = feature_table_unmodelled(&run->scene, modelled, run->stage, notes, UNMODELLED_MAX);
+    const struct scene *s = &run->scene;
+    struct diag notes[FEAT_COUNT + SCENE_MAX_NOTES];
+    int n = unmodelled(s, modelled, run->stage, notes, FEAT_COUNT);
+    for (int i = 0; i < s->n_notes && i < SCENE_MAX_NOTES; i++) {
+        notes[n++] = s->notes[i];
+    }
     for (int i = 0; i < n; i++) {
         print_unmodelled(&notes[i], run->opt.strict);
     }
@@ -114,7 +118,7 @@ check_memory(const struct run *run, struct diag *err)
 }
 
 bool
-run_load_scene(struct run *run, unsigned modelled)
+run_load_scene(struct run *run, unsigned modelled, unmodelled_fn unmodelled)
 {
     struct diag err;
     const struct scene_options load = {.camera = run->opt.camera, .max_bytes = memory_limit(run)};
@@ -130,7 +134,7 @@ run_load_scene(struct run *run, unsigned modelled)
         run_free(run);
         return false;
     }
-    if (!report_unmodelled(run, modelled)) {
+    if (!report_unmodelled(run, modelled, unmodelled)) {
         run_free(run);
         run->status = EXIT_INPUT;
         return false;

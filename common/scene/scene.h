@@ -4,7 +4,7 @@
  * The loader accepts the whole format (docs/scene-format.md); what a stage
  * does with each element is the stage's business.  The scene remembers which
  * features it uses and where each first appears, so a stage can say in one
- * line what it does not model (feature_table.h) or, with --strict, refuse.
+ * line what it does not model (stages/course.h) or, with --strict, refuse.
  *
  * Conventions are those of SCENES.md: right-handed, y up, vertical field of
  * view in degrees, linear RGB, Lambertian BRDF albedo/pi, point-light
@@ -119,7 +119,7 @@ struct camera_desc {
     real near; /* camera rays start on the plane at this depth along the view (>= 0) */
 };
 
-/* ORDER FEATURE: append only; feature_table.c describes each. */
+/* ORDER FEATURE: append only; stages/course.c describes each. */
 enum feature {
     FEAT_POINT_LIGHT,
     FEAT_AREA_LIGHT,
@@ -170,7 +170,7 @@ struct scene {
     /* What the scene asks for that no stage models, beyond the features
      * (a glTF texture, a rough metal, a spot light...): one line per kind,
      * with the statement (or the glTF file) it comes from: what is not
-     * modelled, "; ", what is done instead (feature_table.h).  Every stage
+     * modelled, "; ", what is done instead (stages/course.h).  Every stage
      * prints them as warnings; --strict refuses the scene. */
     struct diag notes[SCENE_MAX_NOTES];
     int n_notes;

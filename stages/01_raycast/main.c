@@ -5,6 +5,7 @@
  */
 #include <stdio.h>
 
+#include "course.h"
 #include "render.h"
 #include "run.h"
 
@@ -73,7 +74,7 @@ main(int argc, char **argv)
             "(06_supersample adds samples per pixel)\n",
             STAGE_NAME);
     }
-    if (!run_load_scene(&run, RENDER_FEATURES)) {
+    if (!run_load_scene(&run, RENDER_FEATURES, course_unmodelled)) {
         return run.status;
     }
     renderer.scene = &run.scene;

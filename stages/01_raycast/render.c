@@ -8,7 +8,7 @@
 #include "light.h"
 
 /* The Lambertian albedo this stage shades a material with.  Materials whose
- * optics arrive in a later stage get the simplification feature_table.c
+ * optics arrive in a later stage get the simplification ../course.c
  * states for them. */
 vec3
 diffuse_albedo(const struct material *m)

@@ -5,6 +5,7 @@
  */
 #include <math.h>
 
+#include "course.h"
 #include "render.h"
 #include "run.h"
 
@@ -157,7 +158,7 @@ main(int argc, char **argv)
     if (!choose_spp(&renderer, &run.opt, &err)) {
         return run_fail(&run, &err, EXIT_USAGE);
     }
-    if (!run_load_scene(&run, RENDER_FEATURES)) {
+    if (!run_load_scene(&run, RENDER_FEATURES, course_unmodelled)) {
         return run.status;
     }
     renderer.scene = &run.scene;

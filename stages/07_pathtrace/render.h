@@ -14,7 +14,7 @@
 #include "stats.h"
 #include "vec3.h"
 
-/* The scene features this stage models (see feature_table.h). */
+/* The scene features this stage models (see ../course.h). */
 #define RENDER_FEATURES \
     (FEATURE_BIT(FEAT_POINT_LIGHT) | FEATURE_BIT(FEAT_MESH) | FEATURE_BIT(FEAT_AREA_LIGHT) \
      | FEATURE_BIT(FEAT_MIRROR) | FEATURE_BIT(FEAT_GLASS) | FEATURE_BIT(FEAT_BLEND) \

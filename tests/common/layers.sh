@@ -3,7 +3,8 @@
 # COMMON_LAYERS, in order: core image gltf scene inspect render app) each
 # use only themselves and the folders before them, no file calls or
 # includes back into itself through others, nothing but the build files
-# sits at common/'s top, and no file is over 450 lines.
+# sits at common/'s top, no code names a stage, and no file is over 450
+# lines.
 #
 #   calls     file A -> file B when A's object uses a symbol B's object
 #             defines (nm on LIBCOMMON, by default the newest
@@ -125,6 +126,23 @@ if [ -z "$top" ]; then
     count 0
 else
     echo "FAIL layers/top: files at common/'s top, outside its layers: $top"
+    count 1
+fi
+
+# common/ knows no stage: no string of its code (comments aside) names one;
+# the course's table, which does, is stages/course.c.
+named=$(for d in $layers; do for f in "$root/common/$d"/*.c "$root/common/$d"/*.h "$root/common/$d"/*.cc; do
+    [ -f "$f" ] || continue
+    case $f in *.cc) lang=c++ ;; *) lang=c ;; esac
+    if gcc -fpreprocessed -dD -E -P -x "$lang" "$f" 2>/dev/null | grep -qE '"[0-9][0-9]_[a-z]'; then
+        printf '%s/%s ' "$d" "$(basename "$f")"
+    fi
+done; done)
+if [ -z "$named" ]; then
+    echo "ok   layers/stages: no code of common/ names a stage"
+    count 0
+else
+    echo "FAIL layers/stages: code that names a stage (the course's table is stages/course.c): $named"
     count 1
 fi
 

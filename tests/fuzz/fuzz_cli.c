@@ -54,7 +54,7 @@ int fuzz_cli_main_08(int argc, char **argv);
 
 /* The hooks fuzz_cli_stage.c puts in place of run_parse and run_load_scene. */
 bool fuzz_cli_run_parse(struct run *run, int argc, char **argv, const struct cli_stage *stage);
-bool fuzz_cli_load_scene(struct run *run, unsigned modelled);
+bool fuzz_cli_load_scene(struct run *run, unsigned modelled, unmodelled_fn unmodelled);
 
 static int (*const stage_mains[])(int, char **) = {
     fuzz_cli_main_01,
@@ -248,9 +248,10 @@ fuzz_cli_run_parse(struct run *run, int argc, char **argv, const struct cli_stag
 }
 
 bool
-fuzz_cli_load_scene(struct run *run, unsigned modelled)
+fuzz_cli_load_scene(struct run *run, unsigned modelled, unmodelled_fn unmodelled)
 {
     (void)modelled;
+    (void)unmodelled;
     call.reached_load = true;
     run->status = STOPPED_AT_LOAD;
     return false;

@@ -7,6 +7,7 @@
 # stage, in order.  The tree of the commit of stage NN is
 #   src/        stage NN's files (stages/NN_name/)
 #   common/     the common core (the same in every commit)
+#   course/     stages/course.[ch], the course's table (the same in every commit)
 #   README.md   what this repository is (the same in every commit)
 # so that `git diff stage-04 stage-05`, `git log -p`, `git show stage-05`
 # and any diff viewer show exactly one stage's change.  Each commit is
@@ -101,6 +102,7 @@ for s in $stages; do
     readme >"$out/README.md"
     copy_files "$root/common" "$out/common"
     copy_files "$root/stages/$s" "$out/src"
+    mkdir -p "$out/course" && cp "$root/stages/course.c" "$root/stages/course.h" "$out/course/"
     g add -A
     idea=$(stage_idea "$s")
     g commit -q --no-verify --allow-empty -m "Stage $s${idea:+: $idea}" \

@@ -7,6 +7,7 @@
 # self-contained, buildable copy of the project for that lab:
 #   stages/NN_name/  the stage, each LAB NN region replaced by its stub
 #                    (earlier labs' regions keep their code, without markers)
+#   stages/course.*  the course's table, which every stage links
 #   common/          the common core
 #   tests/           the harness and the stage tests that apply to stage NN
 #                    (the autograder), reference images, test scenes
@@ -82,11 +83,13 @@ check_out() {
     return 0
 }
 
-# The stage, stubbed: LAB NN regions become hint + TODO + stub.
+# The stage, stubbed: LAB NN regions become hint + TODO + stub; beside it
+# the course's table (stages/course.[ch]), which every stage links.
 write_stage() {
     ws_src=$root/stages/$stage
     ws_dest=$tmp/stages/$stage
     copy_files "$ws_src" "$ws_dest"
+    cp "$root/stages/course.c" "$root/stages/course.h" "$tmp/stages/"
     [ "$solution" -eq 1 ] && return 0
     for ws_f in "$ws_dest"/*.c "$ws_dest"/*.h; do
         [ -f "$ws_f" ] || continue

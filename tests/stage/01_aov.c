@@ -154,7 +154,7 @@ TEST(normal_albedo_id_and_material_of_two_spheres)
     }
     const double centres[2][3] = {{-0.8, 0, -4}, {0.8, 0, -4}};
     /* The second sphere is a mirror: stages before 04 shade it as a
-     * diffuse surface of its reflectance (feature_table.c), and the pass
+     * diffuse surface of its reflectance (stages/course.c), and the pass
      * shows the albedo the stage shades with. */
     double mirror = atoi(STAGE_NAME) >= 4 ? 0 : 0.9;
     const double albedos[2][3] = {{0.7, 0.1, 0.2}, {mirror, mirror, mirror}};

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "feature_table.h"
+#include "course.h"
 #include "testlib.h"
 
 /* A small, fast scene using every kind of shape and a point light. */
@@ -212,7 +212,7 @@ TEST(help_states_the_spp_default)
  * it; --strict refuses the scene instead. */
 TEST(unmodelled_features_are_reported_or_refused)
 {
-    int here = feature_table_stage_number(STAGE_NAME);
+    int here = course_stage_number(STAGE_NAME);
     const char *scene = test_tmp_path("features.scene");
     test_write_file(
         scene,
@@ -230,13 +230,13 @@ TEST(unmodelled_features_are_reported_or_refused)
 
     const enum feature used[] = {FEAT_AREA_LIGHT, FEAT_MIRROR, FEAT_ENVIRONMENT};
 
-    unsigned modelled = feature_table_of_stage(here);
+    unsigned modelled = course_features_of_stage(here);
     for (int i = 0; i < 3; i++) {
-        const struct feature_info *info = feature_info(used[i]);
+        const struct course_feature *info = course_feature(used[i]);
         bool said = strstr(log, info->name) != NULL;
         CHECK_MSG(said == !(modelled & FEATURE_BIT(used[i])), "%s: %s", info->name, log);
         if (here < info->first_stage) {
-            CHECK_MSG(strstr(log, feature_table_stage_name(info->first_stage)) != NULL, "%s", log);
+            CHECK_MSG(strstr(log, course_stage_name(info->first_stage)) != NULL, "%s", log);
         }
     }
     remove(out);

@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "feature_table.h"
+#include "course.h"
 #include "gltf.h"
 #include "render.h"
 #include "scene.h"

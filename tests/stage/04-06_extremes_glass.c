@@ -12,7 +12,7 @@
  *  - thin_glass: a glass slab 1e-5 thick before an area light, pixel by
  *    pixel against the Fresnel transmittance.
  *
- * Before stage 04 glass is shaded as white diffuse (common/app/feature_table.c),
+ * Before stage 04 glass is shaded as white diffuse (stages/course.c),
  * and from 07 on the path tracer samples it (07_extremes_paths.c runs the
  * same cases there): each is another lab's work, so the cases run in the
  * stages of lab 04's glass only, and lab 04's handout fails them among its

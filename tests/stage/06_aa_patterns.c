@@ -48,7 +48,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "feature_table.h"
+#include "course.h"
 #include "pathcheck.h"
 #include "stagecheck.h"
 #include "testlib.h"
@@ -391,7 +391,7 @@ TEST(adaptive_refines_only_the_edge)
     };
 
     /* Stage 07 renders 64 spp as 4 passes of 16, each adaptive on its own. */
-    bool per_pass = feature_table_stage_number(STAGE_NAME) >= 7;
+    bool per_pass = course_stage_number(STAGE_NAME) >= 7;
     int passes = per_pass ? 4 : 1;
     int pass_spp = 64 / passes;
 

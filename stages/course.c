@@ -1,14 +1,14 @@
-/* feature_table.c - the table of scene features and the stages that model them. */
-#include "feature_table.h"
+/* course.c - the stages of the course and the scene features each models (course.h). */
+#include "course.h"
 
 /* ORDER FEATURE */
-static const struct feature_info table[FEAT_COUNT] = {
-    [FEAT_POINT_LIGHT] = {.name = "point light", .first_stage = 1, .last_stage = STAGE_COUNT},
+static const struct course_feature table[FEAT_COUNT] = {
+    [FEAT_POINT_LIGHT] = {.name = "point light", .first_stage = 1, .last_stage = COURSE_STAGES},
     [FEAT_AREA_LIGHT] =
         {
             .name = "area light",
             .first_stage = 3,
-            .last_stage = STAGE_COUNT,
+            .last_stage = COURSE_STAGES,
             .before = "lit as a point light at its centre with intensity L*A*cos(angle to its "
                       "normal), and not seen by the camera",
         },
@@ -16,28 +16,28 @@ static const struct feature_info table[FEAT_COUNT] = {
         {
             .name = "mirror material",
             .first_stage = 4,
-            .last_stage = STAGE_COUNT,
+            .last_stage = COURSE_STAGES,
             .before = "shaded as a diffuse surface with its reflectance as albedo",
         },
     [FEAT_GLASS] =
         {
             .name = "glass material",
             .first_stage = 4,
-            .last_stage = STAGE_COUNT,
+            .last_stage = COURSE_STAGES,
             .before = "shaded as a white diffuse surface",
         },
     [FEAT_BLEND] =
         {
             .name = "blend material",
             .first_stage = 4,
-            .last_stage = STAGE_COUNT,
+            .last_stage = COURSE_STAGES,
             .before = "only its diffuse part is shaded",
         },
     [FEAT_CHECKER] =
         {
             .name = "checker material",
             .first_stage = 4,
-            .last_stage = STAGE_COUNT,
+            .last_stage = COURSE_STAGES,
             .before = "shaded as diffuse with the mean of its two colours",
         },
     [FEAT_AMBIENT] =
@@ -51,22 +51,22 @@ static const struct feature_info table[FEAT_COUNT] = {
         {
             .name = "non-black background",
             .first_stage = 7,
-            .last_stage = STAGE_COUNT,
+            .last_stage = COURSE_STAGES,
             .before = "seen by rays that miss, but it lights nothing",
         },
-    [FEAT_MESH] = {.name = "glTF mesh", .first_stage = 1, .last_stage = STAGE_COUNT},
+    [FEAT_MESH] = {.name = "glTF mesh", .first_stage = 1, .last_stage = COURSE_STAGES},
     [FEAT_SPHERE_LIGHT] =
         {
             .name = "sphere light",
             .first_stage = 3,
-            .last_stage = STAGE_COUNT,
+            .last_stage = COURSE_STAGES,
             .before = "lit as a point light at its centre with intensity L*pi*r^2 (the same "
                       "irradiance where the whole sphere is above the horizon), and not seen by "
                       "the camera",
         },
 };
 
-static const char *const stage_names[STAGE_COUNT + 1] = {
+static const char *const stage_names[COURSE_STAGES + 1] = {
     "?",
     "01_raycast",
     "02_shadows",
@@ -78,14 +78,14 @@ static const char *const stage_names[STAGE_COUNT + 1] = {
     "08_variance_reduction",
 };
 
-const struct feature_info *
-feature_info(enum feature f)
+const struct course_feature *
+course_feature(enum feature f)
 {
     return &table[f];
 }
 
 int
-feature_table_stage_number(const char *name)
+course_stage_number(const char *name)
 {
     if (!name || name[0] < '0' || name[0] > '9' || name[1] < '0' || name[1] > '9') {
         return 0;
@@ -94,13 +94,13 @@ feature_table_stage_number(const char *name)
 }
 
 const char *
-feature_table_stage_name(int number)
+course_stage_name(int number)
 {
-    return number >= 1 && number <= STAGE_COUNT ? stage_names[number] : stage_names[0];
+    return number >= 1 && number <= COURSE_STAGES ? stage_names[number] : stage_names[0];
 }
 
 unsigned
-feature_table_of_stage(int number)
+course_features_of_stage(int number)
 {
     unsigned mask = 0;
     for (int f = 0; f < FEAT_COUNT; f++) {
@@ -112,7 +112,7 @@ feature_table_of_stage(int number)
 }
 
 int
-feature_table_unmodelled(
+course_unmodelled(
     const struct scene *s,
     unsigned modelled,
     const char *stage,
@@ -120,12 +120,12 @@ feature_table_unmodelled(
     int max)
 {
     int n = 0;
-    int here = feature_table_stage_number(stage);
+    int here = course_stage_number(stage);
     for (int f = 0; f < FEAT_COUNT && n < max; f++) {
         if (!(s->features & FEATURE_BIT(f)) || (modelled & FEATURE_BIT(f))) {
             continue;
         }
-        const struct feature_info *info = &table[f];
+        const struct course_feature *info = &table[f];
         struct src_loc at = s->feature_loc[f];
         if (here < info->first_stage) {
             diag_set(
@@ -136,7 +136,7 @@ feature_table_unmodelled(
                 "%s: not modelled by %s (%s adds it); %s",
                 info->name,
                 stage,
-                feature_table_stage_name(info->first_stage),
+                course_stage_name(info->first_stage),
                 info->before);
         } else {
             diag_set(
@@ -149,9 +149,6 @@ feature_table_unmodelled(
                 stage,
                 info->after ? info->after : "ignored");
         }
-    }
-    for (int i = 0; i < s->n_notes && n < max; i++) {
-        notes[n++] = s->notes[i];
     }
     return n;
 }
