@@ -10,9 +10,9 @@
 #include <unistd.h>
 
 #include "image.h"
+#include "recorder.h"
 #include "run_outputs.h"
 #include "signals.h"
-#include "trace.h"
 
 /* Print err, remember the exit status, and tell the caller to stop. */
 static bool
@@ -221,7 +221,7 @@ render_traced(
     }
     int px = run->opt.pixel[0];
     int py = run->opt.pixel[1];
-    struct trace *trace = trace_new(&run->scene, px, py);
+    struct recorder *trace = recorder_new(&run->scene, px, py);
     if (!trace) {
         fprintf(stderr, "error: out of memory for the trace\n");
         return EXIT_RESOURCES;
@@ -243,7 +243,7 @@ render_traced(
         status = run_write_outputs(run, full ? &image : NULL, passes, trace);
     }
     image_free(&image);
-    trace_free(trace);
+    recorder_free(trace);
     return status;
 }
 

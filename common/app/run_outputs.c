@@ -10,8 +10,8 @@
 
 #include "atomic_file.h"
 #include "image.h"
+#include "recorder.h"
 #include "signals.h"
-#include "trace.h"
 
 /* The name that makes an output go to standard output (--stats -). */
 #define STDOUT_NAME "-"
@@ -177,17 +177,17 @@ write_one(
     const char *path,
     FILE *f,
     const struct image *image,
-    const struct trace *trace,
+    const struct recorder *trace,
     struct diag *err)
 {
     if (path == run->opt.trace_svg_path) {
-        const struct trace_camera camera = {run->aov.ctx, run->aov.camera_ray};
-        return trace_write_svg(f, trace, image, &camera, err);
+        const struct recorder_camera camera = {run->aov.ctx, run->aov.camera_ray};
+        return recorder_write_svg(f, trace, image, &camera, err);
     }
     if (path == run->opt.trace_path && is_json(path)) {
-        trace_write_json(f, trace);
+        recorder_write_json(f, trace);
     } else if (path == run->opt.trace_path) {
-        trace_write_text(f, trace);
+        recorder_write_text(f, trace);
     } else {
         stats_report_write_json_to(f, &run->rep);
     }
@@ -197,7 +197,7 @@ write_one(
 /* The outputs that go to standard output ("-"), once the files are in
  * place. */
 static int
-write_stdout(struct run *run, const struct image *image, const struct trace *trace)
+write_stdout(struct run *run, const struct image *image, const struct recorder *trace)
 {
     const char *streams[] = {run->opt.stats_path, run->opt.trace_path, run->opt.trace_svg_path};
     for (int i = 0; i < 3; i++) {
@@ -226,7 +226,7 @@ run_write_outputs(
     struct run *run,
     const struct image *image,
     const struct image *passes,
-    const struct trace *trace)
+    const struct recorder *trace)
 {
     run->rep.peak_rss_bytes = stats_peak_rss_bytes();
     run->rep.seconds_total = stats_clock_seconds() - run->start;

@@ -10,8 +10,8 @@
 
 #include "diag.h"
 #include "image.h"
+#include "recorder.h"
 #include "run.h"
-#include "trace.h"
 
 /* Whether the run writes the image: always, but with --pixel only when -o
  * asks for it. */
@@ -33,6 +33,6 @@ int run_write_outputs(
     struct run *run,
     const struct image *image,
     const struct image *passes,
-    const struct trace *trace);
+    const struct recorder *trace);
 
 #endif /* RUN_OUTPUTS_H */

@@ -18,10 +18,10 @@
 #define STATS_MAX_EXTRA 6
 #define REPORT_MAX_VALUES 24
 
-struct trace;
+struct recorder;
 
 struct stats {
-    struct trace *trace; /* the recorder of --pixel --trace (trace.h); NULL in a render */
+    struct recorder *recorder; /* the recorder of --pixel --trace (recorder.h); NULL in a render */
     uint64_t rays_camera; /* primary rays */
     uint64_t rays_shadow; /* visibility (any-hit) rays */
     uint64_t rays_secondary; /* reflected, refracted, path-continuation rays */

@@ -3,7 +3,7 @@
  * (docs/inspect.md), the rays it traces and the decisions it makes: the
  * path inspector's calls, named inspect_* so that they read apart from the
  * lesson's own trace() and shade().  Each does nothing unless this pixel
- * is being inspected (st->trace, the recorder of trace.h, is not NULL).
+ * is being inspected (st->recorder, the recorder of recorder.h, is not NULL).
  *
  * inspect_hit reads the stage's own struct hit (geometry.h: t, p, prim,
  * material, ng, n, front_face): include this header after it.
@@ -11,14 +11,14 @@
 #ifndef INSPECT_H
 #define INSPECT_H
 
-#include "trace.h"
+#include "recorder.h"
 
 /* Whether this pixel is being traced (for work done only for the trace,
  * such as finding what blocked a shadow ray). */
 static inline bool
 inspecting(const struct stats *st)
 {
-    return st->trace != NULL;
+    return st->recorder != NULL;
 }
 
 /* A camera sample: its film position (pixel px + the sub-pixel offset) and
@@ -26,16 +26,16 @@ inspecting(const struct stats *st)
 static inline void
 inspect_sample(struct stats *st, int index, real film_x, real film_y, ray r)
 {
-    if (st->trace) {
-        trace_log_sample(st->trace, index, film_x, film_y, r);
+    if (st->recorder) {
+        recorder_log_sample(st->recorder, index, film_x, film_y, r);
     }
 }
 
 static inline void
 inspect_sample_done(struct stats *st, vec3 radiance)
 {
-    if (st->trace) {
-        trace_log_sample_done(st->trace, radiance);
+    if (st->recorder) {
+        recorder_log_sample_done(st->recorder, radiance);
     }
 }
 
@@ -46,9 +46,9 @@ inspect_sample_done(struct stats *st, vec3 radiance)
 static inline void
 inspect_hit(struct stats *st, int depth, ray r, const struct hit *h)
 {
-    if (st->trace) {
-        trace_log_hit(
-            st->trace, depth, r, h->t, h->p, h->prim, h->material, h->ng, h->n, h->front_face);
+    if (st->recorder) {
+        recorder_log_hit(
+            st->recorder, depth, r, h->t, h->p, h->prim, h->material, h->ng, h->n, h->front_face);
     }
 }
 
@@ -57,18 +57,18 @@ inspect_hit(struct stats *st, int depth, ray r, const struct hit *h)
 static inline void
 inspect_miss(struct stats *st, int depth, ray r, vec3 radiance)
 {
-    if (st->trace) {
-        trace_log_miss(st->trace, depth, r, radiance);
+    if (st->recorder) {
+        recorder_log_miss(st->recorder, depth, r, radiance);
     }
 }
 
 /* The estimate of one light's direct light begins (its shadow rays and
  * samples follow). */
 static inline void
-inspect_light(struct stats *st, enum trace_light_kind kind, int index)
+inspect_light(struct stats *st, enum recorder_light_kind kind, int index)
 {
-    if (st->trace) {
-        trace_log_light(st->trace, kind, index);
+    if (st->recorder) {
+        recorder_log_light(st->recorder, kind, index);
     }
 }
 
@@ -77,8 +77,8 @@ inspect_light(struct stats *st, enum trace_light_kind kind, int index)
 static inline void
 inspect_shadow(struct stats *st, ray r, real t_max, int blocker, real blocker_dist)
 {
-    if (st->trace) {
-        trace_log_shadow(st->trace, r, t_max, blocker, blocker_dist);
+    if (st->recorder) {
+        recorder_log_shadow(st->recorder, r, t_max, blocker, blocker_dist);
     }
 }
 
@@ -88,8 +88,8 @@ inspect_shadow(struct stats *st, ray r, real t_max, int blocker, real blocker_di
 static inline void
 inspect_light_sample(struct stats *st, vec3 y, real pdf_area, real pdf_solid_angle, vec3 irradiance)
 {
-    if (st->trace) {
-        trace_log_light_sample(st->trace, y, pdf_area, pdf_solid_angle, irradiance);
+    if (st->recorder) {
+        recorder_log_light_sample(st->recorder, y, pdf_area, pdf_solid_angle, irradiance);
     }
 }
 
@@ -98,8 +98,8 @@ inspect_light_sample(struct stats *st, vec3 y, real pdf_area, real pdf_solid_ang
 static inline void
 inspect_area_sample(struct stats *st, const struct area_light *light, vec3 y, vec3 irradiance)
 {
-    if (st->trace) {
-        trace_log_light_sample(st->trace, y, 1 / area_light_area(light), 0, irradiance);
+    if (st->recorder) {
+        recorder_log_light_sample(st->recorder, y, 1 / area_light_area(light), 0, irradiance);
     }
 }
 
@@ -108,8 +108,8 @@ inspect_area_sample(struct stats *st, const struct area_light *light, vec3 y, ve
 static inline void
 inspect_adaptive(struct stats *st, int probes, int blocked, int more)
 {
-    if (st->trace) {
-        trace_log_adaptive(st->trace, probes, blocked, more);
+    if (st->recorder) {
+        recorder_log_adaptive(st->recorder, probes, blocked, more);
     }
 }
 
@@ -118,8 +118,8 @@ inspect_adaptive(struct stats *st, int probes, int blocked, int more)
 static inline void
 inspect_shade(struct stats *st, vec3 albedo, vec3 irradiance, vec3 ambient, vec3 radiance)
 {
-    if (st->trace) {
-        trace_log_shade(st->trace, albedo, irradiance, ambient, radiance);
+    if (st->recorder) {
+        recorder_log_shade(st->recorder, albedo, irradiance, ambient, radiance);
     }
 }
 
@@ -129,8 +129,8 @@ inspect_shade(struct stats *st, vec3 albedo, vec3 irradiance, vec3 ambient, vec3
 static inline void
 inspect_specular(struct stats *st, int depth, const char *event, real fresnel, vec3 weight)
 {
-    if (st->trace) {
-        trace_log_specular(st->trace, depth, event, fresnel, weight);
+    if (st->recorder) {
+        recorder_log_specular(st->recorder, depth, event, fresnel, weight);
     }
 }
 
@@ -145,8 +145,8 @@ inspect_bounce(
     vec3 beta_before,
     vec3 beta_after)
 {
-    if (st->trace) {
-        trace_log_bounce(st->trace, lobe, d, pdf, beta_before, beta_after);
+    if (st->recorder) {
+        recorder_log_bounce(st->recorder, lobe, d, pdf, beta_before, beta_after);
     }
 }
 
@@ -155,8 +155,8 @@ inspect_bounce(
 static inline void
 inspect_nee(struct stats *st, vec3 radiance)
 {
-    if (st->trace) {
-        trace_log_nee(st->trace, radiance);
+    if (st->recorder) {
+        recorder_log_nee(st->recorder, radiance);
     }
 }
 
@@ -166,8 +166,8 @@ inspect_nee(struct stats *st, vec3 radiance)
 static inline void
 inspect_emission(struct stats *st, vec3 radiance, bool after_specular)
 {
-    if (st->trace) {
-        trace_log_emission(st->trace, radiance, after_specular);
+    if (st->recorder) {
+        recorder_log_emission(st->recorder, radiance, after_specular);
     }
 }
 
@@ -176,8 +176,8 @@ inspect_emission(struct stats *st, vec3 radiance, bool after_specular)
 static inline void
 inspect_roulette(struct stats *st, real q, real u, bool survived)
 {
-    if (st->trace) {
-        trace_log_roulette(st->trace, q, u, survived);
+    if (st->recorder) {
+        recorder_log_roulette(st->recorder, q, u, survived);
     }
 }
 
@@ -185,8 +185,8 @@ inspect_roulette(struct stats *st, real q, real u, bool survived)
 static inline void
 inspect_end(struct stats *st, const char *why)
 {
-    if (st->trace) {
-        trace_log_end(st->trace, why);
+    if (st->recorder) {
+        recorder_log_end(st->recorder, why);
     }
 }
 

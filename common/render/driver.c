@@ -17,7 +17,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "trace.h"
+#include "recorder.h"
 
 #define TILE_SIZE 16
 
@@ -323,7 +323,7 @@ driver_render_pixel_traced(
     const struct render_job *job,
     int px,
     int py,
-    struct trace *trace,
+    struct recorder *trace,
     float rgb[3],
     struct render_result *result)
 {
@@ -332,13 +332,13 @@ driver_render_pixel_traced(
     clock_t cpu_start = clock();
     vec3 sum = vec3_splat(0);
     unsigned char bad = 0;
-    struct stats st = {.trace = trace};
+    struct stats st = {.recorder = trace};
     for (int pass = 0; pass < job->passes; pass++) {
-        trace_pass_begin(trace, pass);
+        recorder_pass_begin(trace, pass);
         vec3 v = vec3_splat(0);
         struct tile one = {px, py, px + 1, py + 1, pass, job->seed, job->width, &v, 1};
         bool finished = job->tile(job->ctx, &one, &st);
-        trace_pass_end(trace, v);
+        recorder_pass_end(trace, v);
         if (!finished) {
             result->interrupted = true; /* a stop: the passes done so far */
             break;
@@ -347,8 +347,8 @@ driver_render_pixel_traced(
         result->passes_done++;
     }
     store_mean(sum, result->passes_done, rgb);
-    trace_set_value(trace, rgb);
-    st.trace = NULL;
+    recorder_set_value(trace, rgb);
+    st.recorder = NULL;
     result->counts = st;
     result->nan_pixels = bad;
     result->seconds = stats_clock_seconds() - start;

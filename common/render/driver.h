@@ -87,10 +87,10 @@ bool driver_render_image(
     struct render_result *result,
     struct diag *err);
 
-struct trace;
+struct recorder;
 
 /* Render only pixel (px, py), pass after pass, with the random streams it
- * has in driver_render_image, recording its rays into trace (trace.h); rgb gets
+ * has in driver_render_image, recording its rays into trace (recorder.h); rgb gets
  * its value as driver_render_image stores it, bit for bit.  The time limit is not
  * applied: every pass of the job is rendered, unless a stop is asked for
  * (then result->interrupted, and rgb is the mean of the passes done). */
@@ -98,7 +98,7 @@ void driver_render_pixel_traced(
     const struct render_job *job,
     int px,
     int py,
-    struct trace *trace,
+    struct recorder *trace,
     float rgb[3],
     struct render_result *result);
 

@@ -66,7 +66,7 @@ direct_irradiance(const struct world *w, const struct hit *h, struct stats *st)
     vec3 e = vec3_splat(0);
     for (int i = 0; i < s->n_point_lights; i++) {
         const struct point_light *light = &s->point_lights[i];
-        inspect_light(st, TRACE_POINT_LIGHT, i);
+        inspect_light(st, RECORDER_POINT_LIGHT, i);
         vec3 irradiance = point_irradiance(h, light->position, light->intensity);
         if (!vec3_is_zero(irradiance) && visible(w, h, light->position, st)) {
             e = vec3_add(e, irradiance);
@@ -74,7 +74,7 @@ direct_irradiance(const struct world *w, const struct hit *h, struct stats *st)
     }
     for (int i = 0; i < s->n_area_lights; i++) {
         const struct area_light *light = &s->area_lights[i];
-        inspect_light(st, TRACE_AREA_LIGHT, i);
+        inspect_light(st, RECORDER_AREA_LIGHT, i);
         vec3 center = area_light_center(light);
         vec3 irradiance = point_irradiance(h, center, area_light_intensity(light, h->p));
         if (!vec3_is_zero(irradiance) && visible(w, h, center, st)) {
@@ -83,7 +83,7 @@ direct_irradiance(const struct world *w, const struct hit *h, struct stats *st)
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
         const struct sphere_light *sphere = &s->sphere_lights[i];
-        inspect_light(st, TRACE_SPHERE_LIGHT, i);
+        inspect_light(st, RECORDER_SPHERE_LIGHT, i);
         vec3 irradiance = point_irradiance(h, sphere->center, sphere_light_intensity(sphere));
         if (!vec3_is_zero(irradiance) && visible(w, h, sphere->center, st)) {
             e = vec3_add(e, irradiance);

@@ -322,7 +322,7 @@ picked_irradiance(
     for (int k = 0; k < n; k++) {
         int i = light_pick(sampling->picker, ((real)k + rng_uniform(rng)) / (real)n);
         struct emitter light = {.area = &w->scene->area_lights[i]};
-        inspect_light(st, TRACE_AREA_LIGHT, i);
+        inspect_light(st, RECORDER_AREA_LIGHT, i);
         real p = (real)light_pick_probability(w->scene, sampling->picker, i);
         sum = vec3_add(sum, vec3_scale(light_irradiance(w, h, &light, &one, rng, st), 1 / p));
     }
@@ -341,7 +341,7 @@ direct_irradiance(
     vec3 e = vec3_splat(0);
     for (int i = 0; i < s->n_point_lights; i++) {
         const struct point_light *light = &s->point_lights[i];
-        inspect_light(st, TRACE_POINT_LIGHT, i);
+        inspect_light(st, RECORDER_POINT_LIGHT, i);
         vec3 irradiance = point_irradiance(h, light->position, light->intensity);
         if (!vec3_is_zero(irradiance)) {
             e = vec3_add(e, vec3_mul(irradiance, transmittance(w, h, light->position, st)));
@@ -352,7 +352,7 @@ direct_irradiance(
     for (int k = 0; k < n_own; k++) {
         int i = picker ? picker->own[k] : k;
         struct emitter light = {.area = &s->area_lights[i]};
-        inspect_light(st, TRACE_AREA_LIGHT, i);
+        inspect_light(st, RECORDER_AREA_LIGHT, i);
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     if (picker && picker->cdf) {
@@ -360,7 +360,7 @@ direct_irradiance(
     }
     for (int i = 0; i < s->n_sphere_lights; i++) {
         struct emitter light = {.sphere = &s->sphere_lights[i]};
-        inspect_light(st, TRACE_SPHERE_LIGHT, i);
+        inspect_light(st, RECORDER_SPHERE_LIGHT, i);
         e = vec3_add(e, light_irradiance(w, h, &light, sampling, rng, st));
     }
     return e;

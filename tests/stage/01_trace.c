@@ -192,7 +192,7 @@ TEST(svg_is_valid_and_renders_in_chromium)
     image_free(&shot);
 }
 
-/* How many of the camera-ray lines (yellow, style_of in trace_svg.c) of
+/* How many of the camera-ray lines (yellow, style_of in recorder_svg.c) of
  * the SVG's film panel (the part before the top view) have an end outside
  * pixel (px, py)'s square of `scale` units (plus half a unit for the
  * printed rounding); *n_lines counts them all. */

@@ -1,10 +1,10 @@
 /*
- * trace_svg.h - what the two halves of --trace-svg's picture share
- * (trace_svg.c draws the camera's view and the segments, trace_svg_top.c
+ * recorder_svg.h - what the two halves of --trace-svg's picture share
+ * (recorder_svg.c draws the camera's view and the segments, recorder_svg_top.c
  * the top view).
  */
-#ifndef TRACE_SVG_H
-#define TRACE_SVG_H
+#ifndef RECORDER_SVG_H
+#define RECORDER_SVG_H
 
 #include <stdio.h>
 
@@ -23,10 +23,10 @@ struct top {
 };
 
 /* The scene's bounds: every shape, light and the camera. */
-struct bounds trace_svg_scene_bounds(const struct scene *s);
+struct bounds recorder_svg_scene_bounds(const struct scene *s);
 /* Point p of the scene in the top view's panel. */
-void trace_svg_top_point(const struct top *t, vec3 p, real *x, real *y);
+void recorder_svg_top_point(const struct top *t, vec3 p, real *x, real *y);
 /* The scene's shapes, lights and camera in the top view, into f. */
-void trace_svg_top_shapes(FILE *f, const struct top *t, const struct scene *s);
+void recorder_svg_top_shapes(FILE *f, const struct top *t, const struct scene *s);
 
 #endif

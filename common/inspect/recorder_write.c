@@ -1,10 +1,10 @@
 /*
- * trace_write.c - a recorded trace (trace_events.h) written as an indented
- * text tree or as JSON (trace.h), and the names every writer, SVG too,
+ * recorder_write.c - a recorded trace (recorder_events.h) written as an indented
+ * text tree or as JSON (recorder.h), and the names every writer, SVG too,
  * prints for a primitive or a light: each field in the order the
- * recorder (trace.c) added it.
+ * recorder (recorder.c) added it.
  */
-#include "trace_events.h"
+#include "recorder_events.h"
 
 #include <math.h>
 #include <string.h>
@@ -12,7 +12,7 @@
 /* --- names -------------------------------------------------------------- */
 
 void
-trace_prim_name(const struct scene *s, int prim, struct trace_name *out)
+recorder_prim_name(const struct scene *s, int prim, struct recorder_name *out)
 {
     int shapes[] = {s->n_spheres, s->n_quads, s->n_triangles, s->n_area_lights, s->n_sphere_lights};
     static const char *const kinds[] = {"sphere", "quad", "triangle", "area_light", "sphere_light"};
@@ -22,7 +22,7 @@ trace_prim_name(const struct scene *s, int prim, struct trace_name *out)
         index -= shapes[k];
         k++;
     }
-    *out = (struct trace_name){.kind = kinds[k], .index = index};
+    *out = (struct recorder_name){.kind = kinds[k], .index = index};
     switch (k) {
     case 0:
         out->line = index < s->n_spheres ? s->spheres[index].line : 0;
@@ -43,15 +43,15 @@ trace_prim_name(const struct scene *s, int prim, struct trace_name *out)
 }
 
 void
-trace_light_name(const struct scene *s, long long code, struct trace_name *out)
+recorder_light_name(const struct scene *s, long long code, struct recorder_name *out)
 {
     int kind = (int)(code >> 32);
     int index = (int)(code & 0xffffffff);
     static const char *const kinds[] = {"point_light", "area_light", "sphere_light"};
-    *out = (struct trace_name){.kind = kinds[kind], .index = index};
-    if (kind == TRACE_POINT_LIGHT) {
+    *out = (struct recorder_name){.kind = kinds[kind], .index = index};
+    if (kind == RECORDER_POINT_LIGHT) {
         out->line = s->point_lights[index].loc.line;
-    } else if (kind == TRACE_AREA_LIGHT) {
+    } else if (kind == RECORDER_AREA_LIGHT) {
         out->line = s->area_lights[index].loc.line;
     } else {
         out->line = s->sphere_lights[index].loc.line;
@@ -71,9 +71,9 @@ text_vec(FILE *f, const double x[3], int dims)
 }
 
 static void
-text_field(FILE *f, const struct trace *t, const struct trace_field *field)
+text_field(FILE *f, const struct recorder *t, const struct recorder_field *field)
 {
-    struct trace_name name;
+    struct recorder_name name;
     fprintf(f, "  %s ", field->key);
     switch (field->kind) {
     case FIELD_NUM:
@@ -93,7 +93,7 @@ text_field(FILE *f, const struct trace *t, const struct trace_field *field)
         fprintf(f, "%s", field->text);
         break;
     case FIELD_PRIM:
-        trace_prim_name(t->scene, (int)field->i, &name);
+        recorder_prim_name(t->scene, (int)field->i, &name);
         fprintf(f, "%s #%d (line %d)", name.kind, name.index, name.line);
         break;
     case FIELD_MATERIAL:
@@ -105,7 +105,7 @@ text_field(FILE *f, const struct trace *t, const struct trace_field *field)
         }
         break;
     case FIELD_LIGHT:
-        trace_light_name(t->scene, field->i, &name);
+        recorder_light_name(t->scene, field->i, &name);
         fprintf(f, "%s #%d (line %d)", name.kind, name.index, name.line);
         break;
     }
@@ -114,7 +114,7 @@ text_field(FILE *f, const struct trace *t, const struct trace_field *field)
 /* Whether the stage recursed: in 04-06 a `specular` event spawns the rays
  * that follow it (07 loops along one path and records `bounce`s). */
 static bool
-is_recursive(const struct trace *t)
+is_recursive(const struct recorder *t)
 {
     for (int i = 0; i < t->n_events; i++) {
         if (strcmp(t->events[i].type, "specular") == 0) {
@@ -129,7 +129,7 @@ is_recursive(const struct trace *t)
  * the branch it spawned off, once that has returned), 0 at a new sample,
  * else as before. */
 static int
-recursion_depth(const struct trace_event *e, int before)
+recursion_depth(const struct recorder_event *e, int before)
 {
     if (e->level == 0) {
         return 0;
@@ -143,7 +143,7 @@ recursion_depth(const struct trace_event *e, int before)
 }
 
 void
-trace_write_text(FILE *f, const struct trace *t)
+recorder_write_text(FILE *f, const struct recorder *t)
 {
     fprintf(f, "pixel (%d, %d) of %s\n", t->px, t->py, t->scene->path);
     fprintf(f, "value (%.6g %.6g %.6g)", t->value[0], t->value[1], t->value[2]);
@@ -157,7 +157,7 @@ trace_write_text(FILE *f, const struct trace *t)
     bool nest = is_recursive(t);
     int depth = 0;
     for (int i = 0; i < t->n_events; i++) {
-        const struct trace_event *e = &t->events[i];
+        const struct recorder_event *e = &t->events[i];
         if (e->pass != pass) {
             pass = e->pass;
             fprintf(f, "pass %d\n", pass);
@@ -219,7 +219,7 @@ json_string(FILE *f, const char *s)
 }
 
 static void
-json_name(FILE *f, const struct trace_name *name)
+json_name(FILE *f, const struct recorder_name *name)
 {
     fprintf(
         f,
@@ -230,9 +230,9 @@ json_name(FILE *f, const struct trace_name *name)
 }
 
 static void
-json_field(FILE *f, const struct trace *t, const struct trace_field *field)
+json_field(FILE *f, const struct recorder *t, const struct recorder_field *field)
 {
-    struct trace_name name;
+    struct recorder_name name;
     fprintf(f, ", \"%s\": ", field->key);
     switch (field->kind) {
     case FIELD_NUM:
@@ -248,7 +248,7 @@ json_field(FILE *f, const struct trace *t, const struct trace_field *field)
         json_string(f, field->text);
         break;
     case FIELD_PRIM:
-        trace_prim_name(t->scene, (int)field->i, &name);
+        recorder_prim_name(t->scene, (int)field->i, &name);
         json_name(f, &name);
         break;
     case FIELD_MATERIAL:
@@ -262,14 +262,14 @@ json_field(FILE *f, const struct trace *t, const struct trace_field *field)
         }
         break;
     case FIELD_LIGHT:
-        trace_light_name(t->scene, field->i, &name);
+        recorder_light_name(t->scene, field->i, &name);
         json_name(f, &name);
         break;
     }
 }
 
 static void
-json_event(FILE *f, const struct trace *t, const struct trace_event *e)
+json_event(FILE *f, const struct recorder *t, const struct recorder_event *e)
 {
     fprintf(f, "{\"type\": \"%s\", \"level\": %d", e->type, e->level);
     for (int k = 0; k < e->n_fields; k++) {
@@ -279,7 +279,7 @@ json_event(FILE *f, const struct trace *t, const struct trace_event *e)
 }
 
 void
-trace_write_json(FILE *f, const struct trace *t)
+recorder_write_json(FILE *f, const struct recorder *t)
 {
     double value[3] = {t->value[0], t->value[1], t->value[2]};
     fprintf(f, "{\n  \"scene\": ");
@@ -295,7 +295,7 @@ trace_write_json(FILE *f, const struct trace *t)
     fprintf(f, "],\n  \"truncated\": %s,\n  \"samples\": [", t->truncated ? "true" : "false");
     bool first_sample = true;
     for (int i = 0; i < t->n_events;) {
-        const struct trace_event *s = &t->events[i];
+        const struct recorder_event *s = &t->events[i];
         fprintf(f, "%s\n    {\"pass\": %d", first_sample ? "" : ",", s->pass);
         first_sample = false;
         for (int k = 0; k < s->n_fields; k++) {

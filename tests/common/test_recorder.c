@@ -1,6 +1,6 @@
 /*
- * test_trace.c - the pixel trace's recorder and writers (common/inspect/trace.c,
- * common/inspect/trace_write.c), without a stage:
+ * test_recorder.c - the pixel trace's recorder and writers (common/inspect/recorder.c,
+ * common/inspect/recorder_write.c), without a stage:
  *   - driver_render_pixel_traced gives the pixel the value driver_render_image stores,
  *     bit for bit, NaN passes guarded alike, and records one pass estimate
  *     per pass;
@@ -14,7 +14,7 @@
  *     at the parent's depth; a trace without `specular`
  *     events (07's loop) is not indented by depth;
  *   - the recorder stops at its limit and says the trace is truncated;
- *   - no recorder, no cost: the inspect_* calls with st->trace NULL do
+ *   - no recorder, no cost: the inspect_* calls with st->recorder NULL do
  *     nothing.
  */
 #include <math.h>
@@ -24,9 +24,9 @@
 
 #include "check.h"
 #include "driver.h"
+#include "recorder.h"
 #include "scene.h"
 #include "testlib.h"
-#include "trace.h"
 
 /* The fields of a stage's struct hit (geometry.h) that inspect_hit reads. */
 struct hit {
@@ -60,15 +60,15 @@ load(struct scene *s)
 
 /* The written form of a trace, in memory. */
 static char *
-written(const struct trace *t, bool json)
+written(const struct recorder *t, bool json)
 {
     char *buf = NULL;
     size_t len = 0;
     FILE *f = open_memstream(&buf, &len);
     if (json) {
-        trace_write_json(f, t);
+        recorder_write_json(f, t);
     } else {
-        trace_write_text(f, t);
+        recorder_write_text(f, t);
     }
     fclose(f);
     return buf;
@@ -109,7 +109,7 @@ TEST(traced_pixel_is_the_rendered_pixel)
     int nan_passes = 0;
     for (int y = 0; y < 6; y += 5) {
         for (int x = 0; x < 8; x += 3) {
-            struct trace *t = trace_new(&s, x, y);
+            struct recorder *t = recorder_new(&s, x, y);
             float rgb[3];
             struct render_result one;
             driver_render_pixel_traced(&job, x, y, t, rgb, &one);
@@ -133,7 +133,7 @@ TEST(traced_pixel_is_the_rendered_pixel)
             CHECK(one.passes_done == 4 && one.nan_pixels == (uint64_t)any_nan);
             CHECK(json && strstr(json, "{\"pass\": 3, \"estimate\": "));
             free(json);
-            trace_free(t);
+            recorder_free(t);
         }
     }
     CHECK(nan_passes > 0); /* seed 7 has some: the case is tested */
@@ -147,20 +147,20 @@ TEST(names_by_line)
     if (!load(&s)) {
         return;
     }
-    struct trace *t = trace_new(&s, 1, 2);
-    struct stats st = {.trace = t};
+    struct recorder *t = recorder_new(&s, 1, 2);
+    struct stats st = {.recorder = t};
     ray r = {{0, 0, 5}, {0, 0, -1}};
     vec3 n = {0, 0, 1};
-    trace_pass_begin(t, 0);
+    recorder_pass_begin(t, 0);
     inspect_sample(&st, 0, 1.25, 2.75, r);
     /* Primitives: sphere 0, quad 1, triangle 2, area light 3. */
     for (int prim = 0; prim < 4; prim++) {
         struct hit h = {1, prim, n, n, n, prim != 1, prim == 2 ? 1 : 0};
         inspect_hit(&st, 1 + prim, r, &h);
     }
-    inspect_light(&st, TRACE_POINT_LIGHT, 0);
+    inspect_light(&st, RECORDER_POINT_LIGHT, 0);
     inspect_specular(&st, 1, "mirror", NAN, vec3_splat(0.5));
-    trace_pass_end(t, vec3_splat(1));
+    recorder_pass_end(t, vec3_splat(1));
     char *json = written(t, true);
     char *text = written(t, false);
     CHECK(json && strstr(json, "\"primitive\": {\"kind\": \"sphere\", \"index\": 0, \"line\": 5}"));
@@ -181,7 +181,7 @@ TEST(names_by_line)
     CHECK(text && strstr(text, "subpixel (0.25 0.75)"));
     free(json);
     free(text);
-    trace_free(t);
+    recorder_free(t);
     scene_free(&s);
 }
 
@@ -191,22 +191,22 @@ TEST(offsets_are_measured_from_the_spawning_hit)
     if (!load(&s)) {
         return;
     }
-    struct trace *t = trace_new(&s, 0, 0);
-    struct stats st = {.trace = t};
+    struct recorder *t = recorder_new(&s, 0, 0);
+    struct stats st = {.recorder = t};
     vec3 n = {0, 1, 0};
-    trace_pass_begin(t, 0);
+    recorder_pass_begin(t, 0);
     inspect_sample(&st, 0, 0.5, 0.5, (ray){{0, 0, 5}, {0, 0, -1}});
     struct hit floor = {.t = 5, .prim = 1, .p = {0, 0, 0}, .ng = n, .n = n, .front_face = true};
     inspect_hit(&st, 1, (ray){{0, 0, 5}, {0, 0, -1}}, &floor);
     inspect_shadow(&st, (ray){{0, 0.25, 0}, {0, 1, 0}}, 2, -1, 0);
     struct hit above = {.t = 1, .prim = 0, .p = {0, 1.5, 0}, .ng = n, .n = n, .front_face = true};
     inspect_hit(&st, 2, (ray){{0, 0.5, 0}, {0, 1, 0}}, &above);
-    trace_pass_end(t, vec3_splat(0));
+    recorder_pass_end(t, vec3_splat(0));
     char *json = written(t, true);
     CHECK(json && strstr(json, "\"t_max\": 2") && strstr(json, "\"offset\": 0.25"));
     CHECK(json && strstr(json, "\"depth\": 2") && strstr(json, "\"offset\": 0.5"));
     free(json);
-    trace_free(t);
+    recorder_free(t);
     scene_free(&s);
 }
 
@@ -236,11 +236,11 @@ indent_of(const char **from, const char *what)
 static char *
 nested_text(const struct scene *s, bool recursive)
 {
-    struct trace *t = trace_new(s, 0, 0);
-    struct stats st = {.trace = t};
+    struct recorder *t = recorder_new(s, 0, 0);
+    struct stats st = {.recorder = t};
     vec3 n = {0, 1, 0};
     ray r = {{0, 0, 5}, {0, 0, -1}};
-    trace_pass_begin(t, 0);
+    recorder_pass_begin(t, 0);
     inspect_sample(&st, 0, 0.5, 0.5, r);
     int depths[] = {1, 2, 3, 2};
     for (int i = 0; i < 4; i++) {
@@ -255,9 +255,9 @@ nested_text(const struct scene *s, bool recursive)
         /* Back at the first hit, after its reflected branch: refraction. */
         inspect_specular(&st, 1, "refract", 0.04, vec3_splat(0.96));
     }
-    trace_pass_end(t, vec3_splat(0));
+    recorder_pass_end(t, vec3_splat(0));
     char *text = written(t, false);
-    trace_free(t);
+    recorder_free(t);
     return text;
 }
 
@@ -304,21 +304,21 @@ TEST(truncated_at_the_limit)
     if (!load(&s)) {
         return;
     }
-    struct trace *t = trace_new(&s, 0, 0);
-    struct stats st = {.trace = t};
-    trace_pass_begin(t, 0);
+    struct recorder *t = recorder_new(&s, 0, 0);
+    struct stats st = {.recorder = t};
+    recorder_pass_begin(t, 0);
     inspect_sample(&st, 0, 0.5, 0.5, (ray){{0, 0, 5}, {0, 0, -1}});
     for (int i = 0; i < 200000; i++) {
         inspect_end(&st, "again");
     }
-    trace_pass_end(t, vec3_splat(0));
+    recorder_pass_end(t, vec3_splat(0));
     char *json = written(t, true);
     char *text = written(t, false);
     CHECK(json && strstr(json, "\"truncated\": true"));
     CHECK(text && strstr(text, "(truncated: only the first 131072 events were kept)"));
     free(json);
     free(text);
-    trace_free(t);
+    recorder_free(t);
     scene_free(&s);
 }
 
@@ -330,7 +330,7 @@ TEST(no_recorder_no_events)
     inspect_sample(&st, 0, 0, 0, r);
     inspect_miss(&st, 1, r, vec3_splat(1));
     inspect_end(&st, "nothing");
-    CHECK(st.trace == NULL && st.rays_camera == 0);
+    CHECK(st.recorder == NULL && st.rays_camera == 0);
 }
 
 TEST_MAIN(

@@ -1,12 +1,12 @@
 /*
- * trace_svg_top.c - the top view of --trace-svg's picture (trace_svg.c):
+ * recorder_svg_top.c - the top view of --trace-svg's picture (recorder_svg.c):
  * the scene seen from above, x right and z down, scaled into its panel:
  * its bounds, its shapes and lights, and the camera.
  */
 #include <math.h>
 #include <stdio.h>
 
-#include "trace_svg.h"
+#include "recorder_svg.h"
 
 /* Grow b to hold p (a point that is not finite is left out). */
 static void
@@ -35,7 +35,7 @@ grow_sphere(struct bounds *b, vec3 c, real r)
 }
 
 struct bounds
-trace_svg_scene_bounds(const struct scene *s)
+recorder_svg_scene_bounds(const struct scene *s)
 {
     struct bounds b = {vec3_splat(REAL_MAX), vec3_splat(-REAL_MAX)};
     grow_vec(&b, s->camera.origin);
@@ -62,7 +62,7 @@ trace_svg_scene_bounds(const struct scene *s)
 }
 
 void
-trace_svg_top_point(const struct top *t, vec3 p, real *x, real *y)
+recorder_svg_top_point(const struct top *t, vec3 p, real *x, real *y)
 {
     *x = t->x0 + (p.x - t->b.lo.x) * t->scale;
     *y = (p.z - t->b.lo.z) * t->scale;
@@ -75,7 +75,7 @@ top_polygon(FILE *f, const struct top *t, const vec3 *corners, int n, const char
     for (int i = 0; i < n; i++) {
         real x;
         real y;
-        trace_svg_top_point(t, corners[i], &x, &y);
+        recorder_svg_top_point(t, corners[i], &x, &y);
         fprintf(f, "%.2f,%.2f ", (double)x, (double)y);
     }
     fprintf(f, "\"/>\n");
@@ -86,7 +86,7 @@ top_circle(FILE *f, const struct top *t, vec3 c, real r, const char *fill)
 {
     real x;
     real y;
-    trace_svg_top_point(t, c, &x, &y);
+    recorder_svg_top_point(t, c, &x, &y);
     fprintf(
         f,
         "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"%s\" stroke=\"#555\" "
@@ -121,7 +121,7 @@ top_parallelogram(
 }
 
 void
-trace_svg_top_shapes(FILE *f, const struct top *t, const struct scene *s)
+recorder_svg_top_shapes(FILE *f, const struct top *t, const struct scene *s)
 {
     for (int i = 0; i < s->n_quads; i++) {
         const struct quad *q = &s->quads[i];
@@ -151,14 +151,14 @@ trace_svg_top_shapes(FILE *f, const struct top *t, const struct scene *s)
     real x;
     real y;
     for (int i = 0; i < s->n_point_lights; i++) {
-        trace_svg_top_point(t, s->point_lights[i].position, &x, &y);
+        recorder_svg_top_point(t, s->point_lights[i].position, &x, &y);
         fprintf(
             f,
             "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"4\" fill=\"#ffd400\"/>\n",
             (double)x,
             (double)y);
     }
-    trace_svg_top_point(t, s->camera.origin, &x, &y);
+    recorder_svg_top_point(t, s->camera.origin, &x, &y);
     fprintf(
         f,
         "<rect x=\"%.2f\" y=\"%.2f\" width=\"8\" height=\"8\" fill=\"#000\"/>"

@@ -1,22 +1,22 @@
 /*
- * trace.c - the recorder of one pixel's rays (trace.h): the events the
+ * recorder.c - the recorder of one pixel's rays (recorder.h): the events the
  * stage's inspect_* calls (inspect.h) record.  Its written forms are
- * trace_write.c (text, JSON) and trace_svg.c (SVG).
+ * recorder_write.c (text, JSON) and recorder_svg.c (SVG).
  *
  * An event is a type, a level in the tree and a list of named fields
  * (numbers, vectors, names of what the scene holds); the writers print the
  * fields in the order they were recorded, so adding a number to an event is
- * one line in its trace_log_* function.
+ * one line in its recorder_log_* function.
  */
-#include "trace_events.h"
+#include "recorder_events.h"
 
 #include <stdlib.h>
 #include <string.h>
 
-struct trace *
-trace_new(const struct scene *scene, int px, int py)
+struct recorder *
+recorder_new(const struct scene *scene, int px, int py)
 {
-    struct trace *t = calloc(1, sizeof *t);
+    struct recorder *t = calloc(1, sizeof *t);
     if (!t) {
         return NULL;
     }
@@ -28,7 +28,7 @@ trace_new(const struct scene *scene, int px, int py)
 }
 
 void
-trace_free(struct trace *t)
+recorder_free(struct recorder *t)
 {
     if (t) {
         free(t->events);
@@ -38,14 +38,15 @@ trace_free(struct trace *t)
 }
 
 /* A new event of this type at this level; NULL (and the trace marked
- * truncated) past TRACE_MAX_EVENTS or when memory runs out. */
-static struct trace_event *
-add_event(struct trace *t, const char *type, int level, enum trace_segment segment)
+ * truncated) past RECORDER_MAX_EVENTS or when memory runs out. */
+static struct recorder_event *
+add_event(struct recorder *t, const char *type, int level, enum recorder_segment segment)
 {
     if (t->n_events == t->cap_events) {
         int cap = t->cap_events ? 2 * t->cap_events : 256;
-        struct trace_event *grown =
-            t->n_events < TRACE_MAX_EVENTS ? realloc(t->events, (size_t)cap * sizeof *grown) : NULL;
+        struct recorder_event *grown = t->n_events < RECORDER_MAX_EVENTS
+                                           ? realloc(t->events, (size_t)cap * sizeof *grown)
+                                           : NULL;
         if (!grown) {
             t->truncated = true;
             return NULL;
@@ -53,35 +54,35 @@ add_event(struct trace *t, const char *type, int level, enum trace_segment segme
         t->events = grown;
         t->cap_events = cap;
     }
-    struct trace_event *e = &t->events[t->n_events++];
-    *e = (struct trace_event){.type = type, .level = level, .segment = segment, .pass = t->pass};
+    struct recorder_event *e = &t->events[t->n_events++];
+    *e = (struct recorder_event){.type = type, .level = level, .segment = segment, .pass = t->pass};
     return e;
 }
 
-static struct trace_field *
-add_field(struct trace_event *e, const char *key, enum trace_field_kind kind)
+static struct recorder_field *
+add_field(struct recorder_event *e, const char *key, enum recorder_field_kind kind)
 {
-    if (!e || e->n_fields == TRACE_MAX_FIELDS) {
+    if (!e || e->n_fields == RECORDER_MAX_FIELDS) {
         return NULL;
     }
-    struct trace_field *f = &e->fields[e->n_fields++];
-    *f = (struct trace_field){.key = key, .kind = kind};
+    struct recorder_field *f = &e->fields[e->n_fields++];
+    *f = (struct recorder_field){.key = key, .kind = kind};
     return f;
 }
 
 static void
-put_num(struct trace_event *e, const char *key, real x)
+put_num(struct recorder_event *e, const char *key, real x)
 {
-    struct trace_field *f = add_field(e, key, FIELD_NUM);
+    struct recorder_field *f = add_field(e, key, FIELD_NUM);
     if (f) {
         f->x[0] = (double)x;
     }
 }
 
 static void
-put_vec(struct trace_event *e, const char *key, vec3 v)
+put_vec(struct recorder_event *e, const char *key, vec3 v)
 {
-    struct trace_field *f = add_field(e, key, FIELD_VEC);
+    struct recorder_field *f = add_field(e, key, FIELD_VEC);
     if (f) {
         f->dims = 3;
         f->x[0] = (double)v.x;
@@ -92,9 +93,9 @@ put_vec(struct trace_event *e, const char *key, vec3 v)
 
 /* A position in the pixel, (0,0) its top-left corner. */
 static void
-put_vec2(struct trace_event *e, const char *key, real x, real y)
+put_vec2(struct recorder_event *e, const char *key, real x, real y)
 {
-    struct trace_field *f = add_field(e, key, FIELD_VEC);
+    struct recorder_field *f = add_field(e, key, FIELD_VEC);
     if (f) {
         f->dims = 2;
         f->x[0] = (double)x;
@@ -103,25 +104,25 @@ put_vec2(struct trace_event *e, const char *key, real x, real y)
 }
 
 static void
-put_int(struct trace_event *e, const char *key, enum trace_field_kind kind, long long i)
+put_int(struct recorder_event *e, const char *key, enum recorder_field_kind kind, long long i)
 {
-    struct trace_field *f = add_field(e, key, kind);
+    struct recorder_field *f = add_field(e, key, kind);
     if (f) {
         f->i = i;
     }
 }
 
 static void
-put_text(struct trace_event *e, const char *key, const char *text)
+put_text(struct recorder_event *e, const char *key, const char *text)
 {
-    struct trace_field *f = add_field(e, key, FIELD_TEXT);
+    struct recorder_field *f = add_field(e, key, FIELD_TEXT);
     if (f) {
         f->text = text;
     }
 }
 
 static void
-set_segment(struct trace_event *e, vec3 from, vec3 to)
+set_segment(struct recorder_event *e, vec3 from, vec3 to)
 {
     if (e) {
         e->from[0] = (double)from.x;
@@ -134,17 +135,17 @@ set_segment(struct trace_event *e, vec3 from, vec3 to)
 }
 
 void
-trace_pass_begin(struct trace *t, int pass)
+recorder_pass_begin(struct recorder *t, int pass)
 {
     t->pass = pass;
 }
 
 void
-trace_pass_end(struct trace *t, vec3 estimate)
+recorder_pass_end(struct recorder *t, vec3 estimate)
 {
     if (t->n_passes == t->cap_passes) {
         int cap = t->cap_passes ? 2 * t->cap_passes : 16;
-        struct trace_pass *grown = realloc(t->passes, (size_t)cap * sizeof *grown);
+        struct recorder_pass *grown = realloc(t->passes, (size_t)cap * sizeof *grown);
         if (!grown) {
             t->truncated = true;
             return;
@@ -152,22 +153,22 @@ trace_pass_end(struct trace *t, vec3 estimate)
         t->passes = grown;
         t->cap_passes = cap;
     }
-    t->passes[t->n_passes++] = (struct trace_pass){
+    t->passes[t->n_passes++] = (struct recorder_pass){
         .pass = t->pass,
         .estimate = {(double)estimate.x, (double)estimate.y, (double)estimate.z}};
 }
 
 void
-trace_set_value(struct trace *t, const float rgb[3])
+recorder_set_value(struct recorder *t, const float rgb[3])
 {
     memcpy(t->value, rgb, sizeof t->value);
     t->has_value = true;
 }
 
 void
-trace_log_sample(struct trace *t, int index, real film_x, real film_y, ray r)
+recorder_log_sample(struct recorder *t, int index, real film_x, real film_y, ray r)
 {
-    struct trace_event *e = add_event(t, "sample", 0, SEG_NONE);
+    struct recorder_event *e = add_event(t, "sample", 0, SEG_NONE);
     put_int(e, "index", FIELD_INT, index);
     put_vec2(e, "subpixel", film_x - (real)t->px, film_y - (real)t->py);
     put_vec(e, "origin", r.o);
@@ -176,34 +177,34 @@ trace_log_sample(struct trace *t, int index, real film_x, real film_y, ray r)
 }
 
 void
-trace_log_sample_done(struct trace *t, vec3 radiance)
+recorder_log_sample_done(struct recorder *t, vec3 radiance)
 {
-    struct trace_event *e = add_event(t, "radiance", 1, SEG_NONE);
+    struct recorder_event *e = add_event(t, "radiance", 1, SEG_NONE);
     put_vec(e, "value", radiance);
 }
 
 /* How far the origin of a ray spawned at a hit lies from the hit point:
  * the offset that keeps it from hitting its own surface. */
 static void
-put_offset(struct trace_event *e, vec3 origin, vec3 from)
+put_offset(struct recorder_event *e, vec3 origin, vec3 from)
 {
     put_num(e, "offset", vec3_length(vec3_sub(origin, from)));
 }
 
 /* A ray of this depth (> 1) starts at the hit point of the depth before. */
 static void
-put_spawn_offset(struct trace *t, struct trace_event *e, int depth, ray r)
+put_spawn_offset(struct recorder *t, struct recorder_event *e, int depth, ray r)
 {
     if (depth > 1 && t->have_point) {
-        put_offset(e, r.o, depth - 1 <= TRACE_MAX_DEPTH ? t->vertex[depth - 2] : t->last_point);
+        put_offset(e, r.o, depth - 1 <= RECORDER_MAX_DEPTH ? t->vertex[depth - 2] : t->last_point);
     }
 }
 
 /* Remember hit point p of a ray of this depth. */
 static void
-remember_vertex(struct trace *t, int depth, vec3 p)
+remember_vertex(struct recorder *t, int depth, vec3 p)
 {
-    if (depth >= 1 && depth <= TRACE_MAX_DEPTH) {
+    if (depth >= 1 && depth <= RECORDER_MAX_DEPTH) {
         t->vertex[depth - 1] = p;
     }
     t->last_point = p;
@@ -211,8 +212,8 @@ remember_vertex(struct trace *t, int depth, vec3 p)
 }
 
 void
-trace_log_hit(
-    struct trace *t,
+recorder_log_hit(
+    struct recorder *t,
     int depth,
     ray r,
     real dist,
@@ -223,8 +224,8 @@ trace_log_hit(
     vec3 n,
     bool front_face)
 {
-    enum trace_segment segment = depth <= 1 ? SEG_CAMERA : SEG_BOUNCE;
-    struct trace_event *e = add_event(t, "hit", 1, segment);
+    enum recorder_segment segment = depth <= 1 ? SEG_CAMERA : SEG_BOUNCE;
+    struct recorder_event *e = add_event(t, "hit", 1, segment);
     put_int(e, "depth", FIELD_INT, depth);
     put_vec(e, "origin", r.o);
     put_vec(e, "direction", r.d);
@@ -241,9 +242,9 @@ trace_log_hit(
 }
 
 void
-trace_log_miss(struct trace *t, int depth, ray r, vec3 radiance)
+recorder_log_miss(struct recorder *t, int depth, ray r, vec3 radiance)
 {
-    struct trace_event *e = add_event(t, "miss", 1, SEG_MISS);
+    struct recorder_event *e = add_event(t, "miss", 1, SEG_MISS);
     put_int(e, "depth", FIELD_INT, depth);
     put_vec(e, "origin", r.o);
     put_vec(e, "direction", r.d);
@@ -253,17 +254,17 @@ trace_log_miss(struct trace *t, int depth, ray r, vec3 radiance)
 }
 
 void
-trace_log_light(struct trace *t, enum trace_light_kind kind, int index)
+recorder_log_light(struct recorder *t, enum recorder_light_kind kind, int index)
 {
-    struct trace_event *e = add_event(t, "light", 2, SEG_NONE);
+    struct recorder_event *e = add_event(t, "light", 2, SEG_NONE);
     put_int(e, "source", FIELD_LIGHT, (long long)kind << 32 | (unsigned)index);
 }
 
 void
-trace_log_shadow(struct trace *t, ray r, real t_max, int blocker, real blocker_dist)
+recorder_log_shadow(struct recorder *t, ray r, real t_max, int blocker, real blocker_dist)
 {
-    enum trace_segment segment = blocker < 0 ? SEG_SHADOW_CLEAR : SEG_SHADOW_BLOCKED;
-    struct trace_event *e = add_event(t, "shadow", 3, segment);
+    enum recorder_segment segment = blocker < 0 ? SEG_SHADOW_CLEAR : SEG_SHADOW_BLOCKED;
+    struct recorder_event *e = add_event(t, "shadow", 3, segment);
     put_vec(e, "origin", r.o);
     put_vec(e, "direction", r.d);
     if (t->have_point) {
@@ -282,14 +283,14 @@ trace_log_shadow(struct trace *t, ray r, real t_max, int blocker, real blocker_d
 }
 
 void
-trace_log_light_sample(
-    struct trace *t,
+recorder_log_light_sample(
+    struct recorder *t,
     vec3 y,
     real pdf_area,
     real pdf_solid_angle,
     vec3 irradiance)
 {
-    struct trace_event *e = add_event(t, "light_sample", 3, SEG_NONE);
+    struct recorder_event *e = add_event(t, "light_sample", 3, SEG_NONE);
     put_vec(e, "point", y);
     put_num(e, "pdf_area", pdf_area);
     put_num(e, "pdf_solid_angle", pdf_solid_angle);
@@ -297,9 +298,9 @@ trace_log_light_sample(
 }
 
 void
-trace_log_adaptive(struct trace *t, int probes, int blocked, int more)
+recorder_log_adaptive(struct recorder *t, int probes, int blocked, int more)
 {
-    struct trace_event *e = add_event(t, "adaptive", 3, SEG_NONE);
+    struct recorder_event *e = add_event(t, "adaptive", 3, SEG_NONE);
     put_int(e, "probes", FIELD_INT, probes);
     put_int(e, "blocked", FIELD_INT, blocked);
     put_int(e, "more_samples", FIELD_INT, more);
@@ -311,9 +312,9 @@ trace_log_adaptive(struct trace *t, int probes, int blocked, int more)
 }
 
 void
-trace_log_shade(struct trace *t, vec3 albedo, vec3 irradiance, vec3 ambient, vec3 radiance)
+recorder_log_shade(struct recorder *t, vec3 albedo, vec3 irradiance, vec3 ambient, vec3 radiance)
 {
-    struct trace_event *e = add_event(t, "shade", 2, SEG_NONE);
+    struct recorder_event *e = add_event(t, "shade", 2, SEG_NONE);
     put_vec(e, "albedo", albedo);
     put_vec(e, "irradiance", irradiance);
     put_vec(e, "ambient", ambient);
@@ -321,9 +322,9 @@ trace_log_shade(struct trace *t, vec3 albedo, vec3 irradiance, vec3 ambient, vec
 }
 
 void
-trace_log_specular(struct trace *t, int depth, const char *event, real fresnel, vec3 weight)
+recorder_log_specular(struct recorder *t, int depth, const char *event, real fresnel, vec3 weight)
 {
-    struct trace_event *e = add_event(t, "specular", 2, SEG_NONE);
+    struct recorder_event *e = add_event(t, "specular", 2, SEG_NONE);
     put_int(e, "depth", FIELD_INT, depth);
     put_text(e, "event", event);
     put_num(e, "fresnel", fresnel);
@@ -331,15 +332,15 @@ trace_log_specular(struct trace *t, int depth, const char *event, real fresnel, 
 }
 
 void
-trace_log_bounce(
-    struct trace *t,
+recorder_log_bounce(
+    struct recorder *t,
     const char *lobe,
     vec3 d,
     real pdf,
     vec3 beta_before,
     vec3 beta_after)
 {
-    struct trace_event *e = add_event(t, "bounce", 2, SEG_NONE);
+    struct recorder_event *e = add_event(t, "bounce", 2, SEG_NONE);
     put_text(e, "lobe", lobe ? lobe : "?");
     put_vec(e, "direction", d);
     put_num(e, "pdf", pdf);
@@ -348,35 +349,35 @@ trace_log_bounce(
 }
 
 void
-trace_log_nee(struct trace *t, vec3 radiance)
+recorder_log_nee(struct recorder *t, vec3 radiance)
 {
-    struct trace_event *e = add_event(t, "nee", 2, SEG_NONE);
+    struct recorder_event *e = add_event(t, "nee", 2, SEG_NONE);
     put_vec(e, "radiance", radiance);
 }
 
 void
-trace_log_emission(struct trace *t, vec3 radiance, bool after_specular)
+recorder_log_emission(struct recorder *t, vec3 radiance, bool after_specular)
 {
-    struct trace_event *e = add_event(t, "emission", 2, SEG_NONE);
+    struct recorder_event *e = add_event(t, "emission", 2, SEG_NONE);
     put_vec(e, "radiance", radiance);
     put_text(e, "found_by", after_specular ? "camera or specular ray" : "diffuse bounce");
 }
 
 void
-trace_log_roulette(struct trace *t, real q, real u, bool survived)
+recorder_log_roulette(struct recorder *t, real q, real u, bool survived)
 {
     if (!(q > 0)) {
         return; /* the path had already ended (its throughput is 0) */
     }
-    struct trace_event *e = add_event(t, "roulette", 2, SEG_NONE);
+    struct recorder_event *e = add_event(t, "roulette", 2, SEG_NONE);
     put_num(e, "q", q);
     put_num(e, "u", u);
     put_text(e, "outcome", survived ? "survives (throughput / q)" : "stops");
 }
 
 void
-trace_log_end(struct trace *t, const char *why)
+recorder_log_end(struct recorder *t, const char *why)
 {
-    struct trace_event *e = add_event(t, "end", 2, SEG_NONE);
+    struct recorder_event *e = add_event(t, "end", 2, SEG_NONE);
     put_text(e, "why", why);
 }

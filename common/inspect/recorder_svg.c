@@ -1,9 +1,9 @@
 /*
- * trace_svg.c - a traced pixel's paths as a picture (--trace-svg): on the
+ * recorder_svg.c - a traced pixel's paths as a picture (--trace-svg): on the
  * left the full render, with every segment of the pixel's paths projected
  * through the camera; on the right a top view (x right, z down) of the
  * scene's bounds, its spheres and quads, the camera and the same segments
- * (trace_svg_top.c); below, a legend of the segment colours.  The render is embedded as a PNG
+ * (recorder_svg_top.c); below, a legend of the segment colours.  The render is embedded as a PNG
  * data URI, so the file stands alone.
  */
 #include <math.h>
@@ -11,8 +11,8 @@
 #include <string.h>
 
 #include "image.h"
-#include "trace_events.h"
-#include "trace_svg.h"
+#include "recorder_events.h"
+#include "recorder_svg.h"
 
 /* The larger side of each panel, in SVG units (pixels). */
 #define PANEL 480.0
@@ -21,7 +21,7 @@
 #define LEGEND_WIDTH 720.0
 
 struct segment_style {
-    enum trace_segment segment;
+    enum recorder_segment segment;
     const char *colour;
     const char *label;
     const char *dash; /* stroke-dasharray; NULL: solid */
@@ -38,7 +38,7 @@ static const struct segment_style styles[] = {
 #define N_STYLES ((int)(sizeof styles / sizeof styles[0]))
 
 static const struct segment_style *
-style_of(enum trace_segment segment)
+style_of(enum recorder_segment segment)
 {
     for (int i = 0; i < N_STYLES; i++) {
         if (styles[i].segment == segment) {
@@ -73,7 +73,7 @@ put_png_uri(FILE *f, const struct image *image, struct diag *err)
  * centre ray; a point of the scene projects to the film position whose ray
  * passes through it. */
 struct view {
-    const struct trace_camera *camera;
+    const struct recorder_camera *camera;
     vec3 origin, forward; /* the eye, and the centre ray's unit direction */
     vec3 film0, dx, dy; /* film (0, 0) on the plane, and one pixel's step in x and y */
     real g_xx, g_xy, g_yy, det; /* the Gram matrix of dx, dy, and its determinant */
@@ -93,7 +93,7 @@ plane_point(const struct view *v, real fx, real fy, vec3 *o)
 }
 
 static struct view
-view_make(const struct trace_camera *camera, int width, int height)
+view_make(const struct recorder_camera *camera, int width, int height)
 {
     struct view v = {.camera = camera};
     ray centre = camera->camera_ray(camera->ctx, (real)width / 2, (real)height / 2);
@@ -211,7 +211,7 @@ camera_segment(FILE *f, const void *map, vec3 a, vec3 b, const struct segment_st
     panel_line(f, view_point, v, a, b, s);
 }
 
-/* A point of the trace (double, trace_events.h, whatever real is). */
+/* A point of the trace (double, recorder_events.h, whatever real is). */
 static vec3
 event_point(const double p[3])
 {
@@ -221,7 +221,7 @@ event_point(const double p[3])
 /* The segment an event draws: a miss is drawn as far as the scene is
  * wide. */
 static void
-event_segment(const struct trace_event *e, real extent, vec3 *a, vec3 *b)
+event_segment(const struct recorder_event *e, real extent, vec3 *a, vec3 *b)
 {
     *a = event_point(e->from);
     *b = event_point(e->to);
@@ -233,7 +233,7 @@ event_segment(const struct trace_event *e, real extent, vec3 *a, vec3 *b)
 static void
 top_point(const void *map, vec3 p, real *x, real *y)
 {
-    trace_svg_top_point(map, p, x, y);
+    recorder_svg_top_point(map, p, x, y);
 }
 
 /* Segment a-b in the top view. */
@@ -248,13 +248,13 @@ top_segment(FILE *f, const void *map, vec3 a, vec3 b, const struct segment_style
 static void
 draw_segments(
     FILE *f,
-    const struct trace *t,
+    const struct recorder *t,
     real extent,
     void (*draw)(FILE *, const void *, vec3, vec3, const struct segment_style *),
     const void *map)
 {
     for (int i = 0; i < t->n_events; i++) {
-        const struct trace_event *e = &t->events[i];
+        const struct recorder_event *e = &t->events[i];
         const struct segment_style *style = style_of(e->segment);
         if (style) {
             vec3 a;
@@ -292,18 +292,18 @@ legend(FILE *f, double y, double width)
 }
 
 bool
-trace_write_svg(
+recorder_write_svg(
     FILE *f,
-    const struct trace *t,
+    const struct recorder *t,
     const struct image *image,
-    const struct trace_camera *camera,
+    const struct recorder_camera *camera,
     struct diag *err)
 {
     const struct scene *s = t->scene;
     struct view v = view_make(camera, image->width, image->height);
     double img_w = image->width * (double)v.scale;
     double img_h = image->height * (double)v.scale;
-    struct top top = {.x0 = (real)(img_w + GAP), .b = trace_svg_scene_bounds(s)};
+    struct top top = {.x0 = (real)(img_w + GAP), .b = recorder_svg_scene_bounds(s)};
     double span_x = (double)(top.b.hi.x - top.b.lo.x);
     double span_z = (double)(top.b.hi.z - top.b.lo.z);
     double span = fmax(fmax(span_x, span_z), 1e-30);
@@ -349,7 +349,7 @@ trace_write_svg(
         v.scale + 4,
         v.scale + 4);
     fprintf(f, "<g id=\"top-view\" clip-path=\"url(#top)\">\n");
-    trace_svg_top_shapes(f, &top, s);
+    recorder_svg_top_shapes(f, &top, s);
     fprintf(f, "<g stroke-width=\"1\" fill=\"none\">\n");
     draw_segments(f, t, extent, top_segment, &top);
     fprintf(
