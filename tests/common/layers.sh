@@ -146,6 +146,27 @@ else
     count 1
 fi
 
+# docs/architecture.md's sizes of the layers are true: "N files, M lines"
+# per folder, files exactly, lines within 5% (a small edit does not void
+# them, a new file or a real change in size does).
+sizes=$(for d in $layers; do
+    files=$(ls "$root/common/$d" | wc -l)
+    lines=$(cat "$root/common/$d"/* | wc -l)
+    row=$(grep -F "| \`common/$d/\` | " "$root/docs/architecture.md" | head -n 1)
+    echo "$row" | awk -v d="$d" -v f="$files" -v l="$lines" -F'|' '{
+        size = $3; gsub(/,/, "", size)
+        if (split(size, w, " ") < 4 || w[1] != f || (w[3] - l) > 0.05 * l || (l - w[3]) > 0.05 * l)
+            printf "common/%s/ is %d files, %d lines, not \"%s\" ", d, f, l, $3
+    }'
+done)
+if [ -z "$sizes" ]; then
+    echo "ok   layers/sizes-documented: docs/architecture.md gives each layer's files and lines"
+    count 0
+else
+    echo "FAIL layers/sizes-documented: update docs/architecture.md: $sizes"
+    count 1
+fi
+
 # No file of a layer over 450 lines: a file is read in one sitting.
 long=$(for d in $layers; do wc -l "$root/common/$d"/* | awk -v d="$d" '$2 != "total" && $1 > 450 {
     n = split($2, p, "/"); printf "%s/%s (%d lines) ", d, p[n], $1 }'; done)
