@@ -23,31 +23,6 @@ parse_command_line(struct run *run, int argc, char **argv)
     return run_parse(run, argc, argv, &stage);
 }
 
-/* What the render passes (--aov, aov.h) ask of the stage: the ray through
- * a point of the film, the first surface along a ray with its albedo, and
- * the ray from a surface towards a point. */
-static ray
-pass_camera_ray(const void *ctx, real film_x, real film_y)
-{
-    const struct renderer *renderer = ctx;
-    return camera_ray(&renderer->camera, film_x, film_y);
-}
-
-static bool
-pass_first_hit(const void *ctx, ray r, real t_max, struct aov_hit *out)
-{
-    const struct renderer *renderer = ctx;
-    struct stats uncounted = {0};
-    struct hit h;
-    if (!world_intersect(&renderer->world, r, t_max, &h, &uncounted)) {
-        return false;
-    }
-    const struct material *m = h.material >= 0 ? &renderer->scene->materials[h.material] : NULL;
-    vec3 albedo = m ? diffuse_albedo(m) : vec3_splat(0);
-    *out = (struct aov_hit){h.t, h.p, h.n, h.prim, h.material, albedo, h.ng, 0};
-    return true;
-}
-
 /* One ray through each pixel centre, once. */
 static int
 render(struct renderer *renderer, struct run *run)
@@ -55,7 +30,7 @@ render(struct renderer *renderer, struct run *run)
     struct render_job job = run_job(run, renderer);
     job.tile = render_tile;
     renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
-    run->aov = (struct aov_source){renderer, pass_camera_ray, pass_first_hit, NULL};
+    run->aov = render_passes_source(renderer);
     return run_render(run, &job, 1);
 }
 

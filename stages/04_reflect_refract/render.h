@@ -5,6 +5,7 @@
 #ifndef RENDER_H
 #define RENDER_H
 
+#include "aov.h"
 #include "camera.h"
 #include "driver.h"
 #include "geometry.h"
@@ -48,6 +49,9 @@ vec3 trace(const struct renderer *renderer, ray r, int depth, struct rng *rng, s
 /* The radiance through pixel (px, py), (0, 0) top-left: one ray through its centre. */
 vec3
 render_pixel(const struct renderer *renderer, int px, int py, struct rng *rng, struct stats *st);
+
+/* What the render passes (--aov) ask of this stage, its own rays (passes.c). */
+struct aov_source render_passes_source(const struct renderer *renderer);
 
 /* The driver's tile function (driver.h): each pixel's radiance for the tile's
  * pass; false when a stop cut the tile short. */

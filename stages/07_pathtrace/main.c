@@ -125,39 +125,6 @@ choose_spp(struct renderer *renderer, const struct options *opt, struct diag *er
     return true;
 }
 
-/* What the render passes (--aov, aov.h) ask of the stage: the ray through
- * a point of the film, the first surface along a ray with its albedo, and
- * the ray from a surface towards a point. */
-static ray
-pass_camera_ray(const void *ctx, real film_x, real film_y)
-{
-    const struct renderer *renderer = ctx;
-    return camera_ray(&renderer->camera, film_x, film_y);
-}
-
-static bool
-pass_first_hit(const void *ctx, ray r, real t_max, struct aov_hit *out)
-{
-    const struct renderer *renderer = ctx;
-    struct stats uncounted = {0};
-    struct hit h;
-    if (!world_intersect(&renderer->world, r, t_max, &h, &uncounted)) {
-        return false;
-    }
-    const struct material *m = h.material >= 0 ? &renderer->scene->materials[h.material] : NULL;
-    vec3 albedo = m ? diffuse_albedo(m, &h) : vec3_splat(0);
-    *out = (struct aov_hit){h.t, h.p, h.n, h.prim, h.material, albedo, h.ng, h.error};
-    return true;
-}
-
-static ray
-pass_spawn_ray_to(const void *ctx, const struct aov_hit *from, vec3 to, real *t_max)
-{
-    (void)ctx;
-    struct hit h = {.p = from->p, .ng = from->ng, .error = from->error};
-    return spawn_ray_to(&h, to, t_max);
-}
-
 /* Progressive rendering: spp camera samples per pixel as passes of a few
  * samples, each pass a pattern of its own, so that --time or a Ctrl-C can
  * stop the render after any pass and the image is the mean of the passes
@@ -186,7 +153,7 @@ render(struct renderer *renderer, struct run *run)
     renderer->camera = camera_make(&renderer->scene->camera, job.width, job.height);
     run->rep.extra_names[STAT_PENUMBRA] = "penumbra_pixels";
     run->rep.extra_names[STAT_AA_REFINED] = "aa_refined_pixels";
-    run->aov = (struct aov_source){renderer, pass_camera_ray, pass_first_hit, pass_spawn_ray_to};
+    run->aov = render_passes_source(renderer);
     return run_render(run, &job, renderer->spp);
 }
 
