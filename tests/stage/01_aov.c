@@ -8,12 +8,10 @@
  *   - albedo, id, material: the materials and primitive numbers of two
  *     spheres; -1 for the background; the albedo the stage shades with (a
  *     mirror's reflectance before stage 04 models mirrors, none from 04);
- *   - feature: under a sphere lit by a square light, the shadow's centre is
- *     umbra, far away is diffuse-lit, and between them penumbra, in that
- *     order along a line; under a glass sphere the shadow is a caustic;
- *     mirror, glass and (from stage 03, where lights are surfaces) the
- *     light's own pixels are labelled as such; stage 01, which casts no
- *     shadow rays, sees no shadow: the floor is lit everywhere;
+ *   - feature: a floor far from a sphere's shadow is diffuse-lit; mirror, glass and (from stage 03, where lights are
+ *     surfaces) the light's own pixels are labelled as such; stage 01,
+ *     which casts no shadow rays, sees no shadow (the shadows themselves,
+ *     which the stage's shadow rays decide: 02_aov_labels.c);
  * and the contract: the files' names, an unknown pass (exit 2, every name
  * listed, nothing written), an output clash, the same passes with 1 and 3
  * threads, and no files without --aov.
@@ -23,6 +21,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "aovcheck.h"
 #include "check.h"
 #include "imgread.h"
 #include "stagecheck.h"
@@ -32,37 +31,6 @@
 #define H 30
 #define FOV 50.0
 #define PI_D 3.14159265358979323846
-
-/* A pass written beside `image` (aov.h's naming: the stem, the pass,
- * .pfm); false with a message when it cannot be read. */
-static bool
-read_pass(const char *image, const char *pass, struct image *out)
-{
-    char path[1024];
-    snprintf(path, sizeof path, "%.*s.%s.pfm", (int)(strrchr(image, '.') - image), image, pass);
-    struct diag err;
-    if (!image_read_pfm(path, out, &err)) {
-        printf("cannot read %s: %s\n", path, err.msg);
-        return false;
-    }
-    return true;
-}
-
-/* Render scene with --aov passes into a PNG named `name` in the temporary
- * directory; its path, or NULL (with the output printed) on failure. */
-static const char *
-render_passes(const char *scene, const char *name, const char *passes, const char *threads)
-{
-    const char *out = test_tmp_path(name);
-    const char *args[] = {"--aov", passes, "-t", threads, "-o", out, NULL};
-    char log[4096];
-    int status = test_render(scene, args, log, sizeof log);
-    if (status != 0) {
-        printf("render --aov %s failed (status %d):\n%s\n", passes, status, log);
-        return NULL;
-    }
-    return out;
-}
 
 /* The unit direction of the ray through pixel (px, py)'s centre of a camera
  * at the origin looking down -z with up +y (camera.h, in double). */
@@ -97,9 +65,9 @@ TEST(depth_of_a_plane_at_a_known_distance)
         W,
         H,
         -dist);
-    const char *out = scene ? render_passes(scene, "plane.png", "depth", "2") : NULL;
+    const char *out = scene ? aovcheck_render(scene, "plane.png", "depth", "2") : NULL;
     struct image depth = {0};
-    CHECK(out && read_pass(out, "depth", &depth));
+    CHECK(out && aovcheck_read(out, "depth", &depth));
     if (!depth.rgb) {
         return;
     }
@@ -143,12 +111,13 @@ TEST(normal_albedo_id_and_material_of_two_spheres)
 {
     const char *scene = two_spheres();
     const char *out =
-        scene ? render_passes(scene, "spheres.png", "normal,depth,albedo,id,material", "2") : NULL;
+        scene ? aovcheck_render(scene, "spheres.png", "normal,depth,albedo,id,material", "2")
+              : NULL;
     struct image depth = {0}, normal = {0}, albedo = {0}, id = {0}, material = {0};
     CHECK(
-        out && read_pass(out, "depth", &depth) && read_pass(out, "normal", &normal)
-        && read_pass(out, "albedo", &albedo) && read_pass(out, "id", &id)
-        && read_pass(out, "material", &material));
+        out && aovcheck_read(out, "depth", &depth) && aovcheck_read(out, "normal", &normal)
+        && aovcheck_read(out, "albedo", &albedo) && aovcheck_read(out, "id", &id)
+        && aovcheck_read(out, "material", &material));
     if (!material.rgb) {
         return;
     }
@@ -203,136 +172,32 @@ TEST(normal_albedo_id_and_material_of_two_spheres)
     image_free(&material);
 }
 
-/* A floor (y = 0) seen from straight above, under a sphere of material
- * `ball` (centre (0, 1, 0), radius 0.8) and a 0.8 x 0.8 light at height 3
- * centred at x = 3, facing down: the sphere's shadow is centred at
- * x = -1.5 (the line from the light's centre through the sphere's).  The
- * image is a strip along the x axis; returns the feature pass. */
-#define STRIP_W 160
-#define STRIP_H 20
-#define STRIP_FOV 30.0
-#define CAMERA_HEIGHT 8.0
-
-static bool
-strip_labels(const char *ball, const char *name, struct image *feature)
+/* The feature label of what no shadow ray decides (the strip of
+ * aovcheck.h): the far floor is diffuse-lit, glass and mirror are named, and the light's back is an emitter where the
+ * stages make lights surfaces (from 03), else the floor under it, lit.
+ * Stage 01 casts no shadow rays: the floor under the sphere is lit too.
+ * (Shadows, penumbrae and caustics: 02_aov_labels.c.) */
+TEST(feature_labels_name_surfaces_and_lights)
 {
-    char scene_name[64], image_name[64];
-    snprintf(scene_name, sizeof scene_name, "%s.scene", name);
-    snprintf(image_name, sizeof image_name, "%s.png", name);
-    const char *scene = stagecheck_scene(
-        scene_name,
-        "camera origin 0 %g 0 target 0 0 0 up 0 0 -1 fov %g\n"
-        "image width %d height %d\n"
-        "material grey diffuse albedo 0.5 0.5 0.5\n"
-        "material ball %s\n"
-        "quad corner -50 0 -50 edge1 0 0 100 edge2 100 0 0 material grey\n"
-        "sphere center 0 1 0 radius 0.8 material ball\n"
-        "area_light corner 2.6 3 -0.4 edge1 0.8 0 0 edge2 0 0 0.8 radiance 4 4 4\n",
-        CAMERA_HEIGHT,
-        STRIP_FOV,
-        STRIP_W,
-        STRIP_H,
-        ball);
-    const char *out = scene ? render_passes(scene, image_name, "feature", "2") : NULL;
-    return out && read_pass(out, "feature", feature);
-}
-
-/* The column of the strip's image where the floor's point at x is seen. */
-static int
-strip_column(double x)
-{
-    double half_width = tan(STRIP_FOV * PI_D / 360) * STRIP_W / STRIP_H;
-    return (int)floor((x / CAMERA_HEIGHT / half_width + 1) * STRIP_W / 2);
-}
-
-static int
-strip_label(const struct image *f, double x)
-{
-    return (int)image_pixel(f, strip_column(x), STRIP_H / 2)[0];
-}
-
-/* enum aov_label's numbers (docs/aov.md). */
-enum {
-    BACKGROUND,
-    LIT,
-    PENUMBRA,
-    UMBRA,
-    MIRROR,
-    GLASS,
-    CAUSTIC,
-    EMITTER
-};
-
-/* Whether the stage casts shadow rays (from 02): stage 01 sees nothing in
- * the way of a light, and its feature pass says so (aov_label.c). */
-static bool
-casts_shadow_rays(void)
-{
-    return atoi(STAGE_NAME) >= 2;
-}
-
-TEST(feature_labels_along_a_shadow)
-{
-    struct image f = {0};
-    CHECK(strip_labels("diffuse albedo 0.5 0.5 0.5", "shadow", &f));
-    if (!f.rgb) {
-        return;
-    }
-    if (!casts_shadow_rays()) {
-        CHECK_MSG(strip_label(&f, -1.5) == LIT, "no shadow: %d", strip_label(&f, -1.5));
-        CHECK(strip_label(&f, -6) == LIT && strip_label(&f, 0) == LIT);
-        image_free(&f);
-        return;
-    }
-    CHECK_MSG(strip_label(&f, -1.5) == UMBRA, "shadow centre: %d", strip_label(&f, -1.5));
-    CHECK_MSG(strip_label(&f, -6) == LIT, "far floor: %d", strip_label(&f, -6));
-    /* Leftwards from the shadow's centre: umbra, then penumbra, then lit,
-     * never back. */
-    int order[] = {UMBRA, PENUMBRA, LIT};
-    int at = 0, penumbra = 0;
-    for (int x = strip_column(-1.5); x >= 0; x--) {
-        int label = (int)image_pixel(&f, x, STRIP_H / 2)[0];
-        penumbra += label == PENUMBRA;
-        while (at < 3 && label != order[at]) {
-            at++;
-        }
-        CHECK_MSG(at < 3, "column %d: label %d out of the order umbra, penumbra, lit", x, label);
-        if (at == 3) {
-            break;
+    struct image diffuse = {0}, glass = {0}, mirror = {0};
+    CHECK(aovcheck_strip("diffuse albedo 0.5 0.5 0.5", "diffuse", &diffuse));
+    CHECK(aovcheck_strip("glass ior 1.5", "glass", &glass));
+    CHECK(aovcheck_strip("mirror reflectance 0.9 0.9 0.9", "mirror", &mirror));
+    if (diffuse.rgb && glass.rgb && mirror.rgb) {
+        CHECK(aovcheck_strip_label(&diffuse, -6) == AOVCHECK_LIT);
+        CHECK(aovcheck_strip_label(&glass, 0) == AOVCHECK_GLASS);
+        CHECK(aovcheck_strip_label(&mirror, 0) == AOVCHECK_MIRROR);
+        /* The light (centre x = 3, 5 below the camera) over the floor's
+         * x = 3 * 8 / 5. */
+        int light = aovcheck_strip_label(&diffuse, 3 * AOVCHECK_STRIP_CAMERA / 5);
+        int expected = atoi(STAGE_NAME) >= 3 ? AOVCHECK_EMITTER : AOVCHECK_LIT;
+        CHECK_MSG(light == expected, "light: %d, not %d", light, expected);
+        if (atoi(STAGE_NAME) == 1) {
+            int under = aovcheck_strip_label(&diffuse, -1.5);
+            CHECK_MSG(under == AOVCHECK_LIT, "stage 01 sees no shadow: %d", under);
         }
     }
-    CHECK_MSG(penumbra >= 2, "%d penumbra pixels between umbra and lit", penumbra);
-    /* The sphere's top faces the light: lit. */
-    CHECK(strip_label(&f, 0) == LIT);
-    /* The light's back (centre x = 3, 5 below the camera) is seen where
-     * stages make it a surface (from 03), over the floor's x = 3 * 8 / 5. */
-    int light = strip_label(&f, 3 * CAMERA_HEIGHT / 5);
-    CHECK_MSG(atoi(STAGE_NAME) >= 3 ? light == EMITTER : light == LIT, "light: %d", light);
-    image_free(&f);
-}
-
-TEST(glass_casts_a_caustic_and_specular_surfaces_are_named)
-{
-    struct image glass = {0}, mirror = {0};
-    CHECK(strip_labels("glass ior 1.5", "glass", &glass));
-    CHECK(strip_labels("mirror reflectance 0.9 0.9 0.9", "mirror", &mirror));
-    if (!glass.rgb || !mirror.rgb) {
-        image_free(&glass);
-        return;
-    }
-    int under_glass = casts_shadow_rays() ? CAUSTIC : LIT;
-    int under_mirror = casts_shadow_rays() ? UMBRA : LIT;
-    CHECK_MSG(
-        strip_label(&glass, -1.5) == under_glass,
-        "under glass: %d",
-        strip_label(&glass, -1.5));
-    CHECK(strip_label(&glass, 0) == GLASS);
-    CHECK(strip_label(&glass, -6) == LIT);
-    CHECK_MSG(
-        strip_label(&mirror, -1.5) == under_mirror,
-        "under the mirror: %d",
-        strip_label(&mirror, -1.5));
-    CHECK(strip_label(&mirror, 0) == MIRROR);
+    image_free(&diffuse);
     image_free(&glass);
     image_free(&mirror);
 }
@@ -368,8 +233,8 @@ TEST(a_pass_that_would_overwrite_another_output_is_refused)
 TEST(passes_do_not_depend_on_the_thread_count_and_cost_nothing_unasked)
 {
     const char *scene = two_spheres();
-    const char *one = scene ? render_passes(scene, "one.png", "feature,normal", "1") : NULL;
-    const char *three = scene ? render_passes(scene, "three.png", "feature,normal", "3") : NULL;
+    const char *one = scene ? aovcheck_render(scene, "one.png", "feature,normal", "1") : NULL;
+    const char *three = scene ? aovcheck_render(scene, "three.png", "feature,normal", "3") : NULL;
     CHECK(one && three);
     if (one && three) {
         CHECK(test_same_file(test_tmp_path("one.feature.pfm"), test_tmp_path("three.feature.pfm")));
@@ -431,9 +296,9 @@ TEST(an_exr_image_holds_the_passes_as_layers)
     }
     const char *scene = two_spheres();
     const char *png =
-        scene ? render_passes(scene, "layers.png", "depth,normal,feature", "2") : NULL;
+        scene ? aovcheck_render(scene, "layers.png", "depth,normal,feature", "2") : NULL;
     const char *exr =
-        scene ? render_passes(scene, "layers.exr", "depth,normal,feature", "2") : NULL;
+        scene ? aovcheck_render(scene, "layers.exr", "depth,normal,feature", "2") : NULL;
     CHECK(png && exr);
     if (!png || !exr) {
         return;
@@ -443,7 +308,7 @@ TEST(an_exr_image_holds_the_passes_as_layers)
     for (int i = 0; i < 3; i++) {
         struct image file = {0}, layer = {0};
         struct diag err;
-        CHECK(read_pass(png, passes[i], &file));
+        CHECK(aovcheck_read(png, passes[i], &file));
         CHECK_MSG(imgread_layer(exr, passes[i], &layer, &err), "%s", err.msg);
         size_t n = (size_t)W * H * 3;
         CHECK(
@@ -460,8 +325,7 @@ TEST(an_exr_image_holds_the_passes_as_layers)
 TEST_MAIN(
     TEST_ENTRY(depth_of_a_plane_at_a_known_distance),
     TEST_ENTRY(normal_albedo_id_and_material_of_two_spheres),
-    TEST_ENTRY(feature_labels_along_a_shadow),
-    TEST_ENTRY(glass_casts_a_caustic_and_specular_surfaces_are_named),
+    TEST_ENTRY(feature_labels_name_surfaces_and_lights),
     TEST_ENTRY(an_unknown_pass_is_refused_with_the_list_of_passes),
     TEST_ENTRY(a_pass_that_would_overwrite_another_output_is_refused),
     TEST_ENTRY(passes_do_not_depend_on_the_thread_count_and_cost_nothing_unasked),
