@@ -541,7 +541,8 @@ plain_make() {
 
 # plant_stage ROOT TREE STAGE FILE SED-ARGS... - a copy of ROOT's STAGE in
 # TREE with a bug planted in FILE (sed SED-ARGS), built into
-# TREE/build/STAGE/render against ROOT's common core (built already).
+# TREE/build/STAGE/render against ROOT's common core (built already) and
+# the files beside ROOT's stages (linked).
 # The copy starts from ROOT's build of the stage, dates kept, so that make
 # compiles only the planted file (and what includes it).
 # Fails, saying so, when the sed changes nothing (the source moved on);
@@ -557,6 +558,10 @@ plant_stage() {
     [ -e "$ps_tree/common" ] || ln -s "$ps_root/common" "$ps_tree/common"
     [ -e "$ps_tree/build/common" ] || ln -s "$ps_root/build/common" "$ps_tree/build/common"
     cp -Rp "$ps_root/stages/$ps_stage" "$ps_tree/stages/$ps_stage"
+    # The files beside the stages (stages/course.[ch], which every stage links).
+    for ps_f in "$ps_root"/stages/*; do
+        [ ! -f "$ps_f" ] || [ -e "$ps_tree/stages/${ps_f##*/}" ] || ln -s "$ps_f" "$ps_tree/stages/"
+    done
     [ ! -d "$ps_root/build/$ps_stage" ] || cp -Rp "$ps_root/build/$ps_stage" "$ps_tree/build/$ps_stage"
     sed "$@" "$ps_root/stages/$ps_stage/$ps_file" >"$ps_tree/stages/$ps_stage/$ps_file"
     if cmp -s "$ps_root/stages/$ps_stage/$ps_file" "$ps_tree/stages/$ps_stage/$ps_file"; then

@@ -102,7 +102,9 @@ for s in $stages; do
     readme >"$out/README.md"
     copy_files "$root/common" "$out/common"
     copy_files "$root/stages/$s" "$out/src"
-    mkdir -p "$out/course" && cp "$root/stages/course.c" "$root/stages/course.h" "$out/course/"
+    for f in "$root"/stages/*; do
+        [ ! -f "$f" ] || { mkdir -p "$out/course" && cp "$f" "$out/course/"; }
+    done
     g add -A
     idea=$(stage_idea "$s")
     g commit -q --no-verify --allow-empty -m "Stage $s${idea:+: $idea}" \

@@ -7,7 +7,8 @@
 # self-contained, buildable copy of the project for that lab:
 #   stages/NN_name/  the stage, each LAB NN region replaced by its stub
 #                    (earlier labs' regions keep their code, without markers)
-#   stages/course.*  the course's table, which every stage links
+#   stages/course.*  the course's table, which every stage links (every
+#                    file beside the stages is copied)
 #   common/          the common core
 #   tests/           the harness and the stage tests that apply to stage NN
 #                    (the autograder), reference images, test scenes
@@ -89,7 +90,9 @@ write_stage() {
     ws_src=$root/stages/$stage
     ws_dest=$tmp/stages/$stage
     copy_files "$ws_src" "$ws_dest"
-    cp "$root/stages/course.c" "$root/stages/course.h" "$tmp/stages/"
+    for ws_f in "$root"/stages/*; do
+        [ ! -f "$ws_f" ] || cp "$ws_f" "$tmp/stages/"
+    done
     [ "$solution" -eq 1 ] && return 0
     for ws_f in "$ws_dest"/*.c "$ws_dest"/*.h; do
         [ -f "$ws_f" ] || continue
