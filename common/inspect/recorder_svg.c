@@ -128,8 +128,9 @@ depth_of(const struct view *v, vec3 p)
  * point on the image plane, written as film0 + fx dx + fy dy (the normal
  * equations of the two steps). */
 static void
-project(const struct view *v, vec3 p, real *x, real *y)
+project(const void *map, vec3 p, real *x, real *y)
 {
+    const struct view *v = map;
     vec3 d = vec3_sub(p, v->origin);
     vec3 q = vec3_sub(vec3_scale(d, 1 / vec3_dot(d, v->forward)), v->film0);
     real qx = vec3_dot(q, v->dx);
@@ -183,12 +184,6 @@ panel_line(
     }
 }
 
-static void
-view_point(const void *map, vec3 p, real *x, real *y)
-{
-    project(map, p, x, y);
-}
-
 /* Segment a-b through the camera, the part behind the near plane cut off. */
 static void
 camera_segment(FILE *f, const void *map, vec3 a, vec3 b, const struct segment_style *s)
@@ -208,7 +203,7 @@ camera_segment(FILE *f, const void *map, vec3 a, vec3 b, const struct segment_st
         a = da < near ? cut : a;
         b = db < near ? cut : b;
     }
-    panel_line(f, view_point, v, a, b, s);
+    panel_line(f, project, v, a, b, s);
 }
 
 /* A point of the trace (double, recorder_events.h, whatever real is). */

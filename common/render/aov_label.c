@@ -76,7 +76,6 @@ struct receiver {
     const struct aov_source *src;
     const struct scene *scene;
     const struct aov_hit *hit;
-    vec3 p, n;
 };
 
 static void
@@ -186,7 +185,7 @@ tally_light(struct light_tally *t, const struct receiver *at, int light, int k)
             vec3 q, nq, dir;
             real cell_area, radiance;
             grid_point(at->scene, light, i, j, k, &q, &nq, &cell_area, &radiance);
-            real g = receiver_factor(at->p, at->n, q, &dir);
+            real g = receiver_factor(at->hit->p, at->hit->n, q, &dir);
             real cos_light = emitting_cos(at->scene, light, nq, vec3_neg(dir));
             tally(t, at, q, cos_light > 0 ? radiance * g * cos_light * cell_area : 0);
         }
@@ -198,14 +197,12 @@ tally_light(struct light_tally *t, const struct receiver *at, int light, int k)
 static enum aov_label
 diffuse_label(const struct aov_source *src, const struct scene *s, const struct aov_hit *h)
 {
-    vec3 p = h->p;
-    vec3 n = h->n;
-    const struct receiver at = {src, s, h, p, n};
+    const struct receiver at = {src, s, h};
     struct light_tally t = {0};
     for (int i = 0; i < s->n_point_lights; i++) {
         const struct point_light *light = &s->point_lights[i];
         vec3 dir;
-        real g = receiver_factor(p, n, light->position, &dir);
+        real g = receiver_factor(h->p, h->n, light->position, &dir);
         tally(&t, &at, light->position, brightness(light->intensity) * g);
     }
     int k = grid_side(s);
