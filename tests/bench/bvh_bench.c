@@ -45,7 +45,7 @@ print_model(const struct bench_model *m)
         m->seconds_load,
         m->seconds_build,
         m->world.bvh.n_nodes,
-        m->world.bvh.n_nodes > 0 ? tree_depth(&m->world.bvh, 0) : 0,
+        m->world.bvh.nodes ? tree_depth(&m->world.bvh, 0) : 0,
         (double)((size_t)m->world.bvh.n_nodes * sizeof *m->world.bvh.nodes
                  + (size_t)m->world.bvh.n_prims * sizeof *m->world.bvh.prims)
             / (1 << 20));
