@@ -264,7 +264,7 @@ bvh_build(struct bvh *bvh, const struct world *w, struct diag *err)
         bvh->prims[slot] = refs[slot].prim;
     }
     free(refs);
-    if (!bvh_widen(bvh)) {
+    if (!bvh_widen(bvh, w)) {
         diag_set(err, NULL, 0, 0, "out of memory building a BVH over %d primitives", w->n_prims);
         bvh_free(bvh);
         return false;
@@ -277,6 +277,7 @@ bvh_free(struct bvh *bvh)
 {
     free(bvh->nodes);
     free(bvh->wide);
+    free(bvh->corners);
     free(bvh->prims);
     *bvh = (struct bvh){.nodes = NULL};
 }

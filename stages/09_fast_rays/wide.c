@@ -59,16 +59,27 @@ widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wid
     return at;
 }
 
-/* Replace the binary nodes by wide ones (at most as many: each holds two or more binary nodes). */
+/* Replace the binary nodes by wide ones (at most as many: each holds two or more binary nodes),
+ * and copy each triangle's corners to its slot: a leaf's triangles are then side by side in memory,
+ * not three lookups away (slot, triangle, corner) each. */
 bool
-bvh_widen(struct bvh *bvh)
+bvh_widen(struct bvh *bvh, const struct world *w)
 {
     if (bvh->n_nodes == 0) {
         return true;
     }
+    const struct scene *s = w->scene;
     bvh->wide = malloc((size_t)bvh->n_nodes * sizeof *bvh->wide);
-    if (!bvh->wide) {
+    bvh->corners = malloc((size_t)bvh->n_prims * sizeof *bvh->corners);
+    if (!bvh->wide || !bvh->corners) {
         return false;
+    }
+    bvh->first_triangle = s->n_spheres + s->n_quads;
+    for (int slot = 0; slot < bvh->n_prims; slot++) {
+        unsigned t = (unsigned)(bvh->prims[slot] - bvh->first_triangle);
+        for (int k = 0; k < 3 && t < (unsigned)s->n_triangles; k++) {
+            bvh->corners[slot].p[k] = s->positions[s->triangles[t].v[k]];
+        }
     }
     uint32_t n_wide = 0;
     if (bvh->nodes[0].count > 0) { /* a single leaf: one wide node with one child */
@@ -101,10 +112,10 @@ struct query {
     ray r;
     float4 o_near[3], o_far[3]; /* the origin rounded so that entries come early, exits late */
     float4 inv_d[3]; /* 1/d within +-FLT_MAX: no 0 * inf */
-    int near[3]; /* 1 where d < 0: the ray enters a slab through hi */
+    int near[3], far[3]; /* where in a node an axis's entering and leaving planes are */
     bool any, found; /* any: stop at the first hit */
     real t_box, t_prim;
-    float4 t_box4; /* t_box rounded up */
+    float4 t_box4; /* t_box rounded up, in each lane */
     struct hit *out;
     uint64_t visits, tests;
 };
@@ -135,27 +146,33 @@ load4(const float *p)
 static inline unsigned
 meet_boxes(const struct query *q, const struct bvh_wide *node, float entry[4])
 {
+    const float *bounds = &node->lo[0][0];
     float4 t_near = {0, 0, 0, 0};
     float4 t_far = q->t_box4;
     for (int a = 0; a < 3; a++) {
-        float4 enter = (load4(q->near[a] ? node->hi[a] : node->lo[a]) - q->o_near[a]) * q->inv_d[a];
-        float4 leave = (load4(q->near[a] ? node->lo[a] : node->hi[a]) - q->o_far[a]) * q->inv_d[a];
+        float4 enter = (load4(bounds + q->near[a]) - q->o_near[a]) * q->inv_d[a];
+        float4 leave = (load4(bounds + q->far[a]) - q->o_far[a]) * q->inv_d[a];
         t_near = select4(enter > t_near, enter, t_near);
         t_far = select4(leave < t_far, leave, t_far);
     }
-    int4 met = t_near <= t_far * EXIT_SCALE;
+    int4 met = (t_near <= t_far * EXIT_SCALE) & (int4){1, 2, 4, 8};
     memcpy(entry, &t_near, sizeof t_near);
-    return (unsigned)((met[0] & 1) | (met[1] & 2) | (met[2] & 4) | (met[3] & 8));
+    return (unsigned)(met[0] | met[1] | met[2] | met[3]);
 }
 
 /* The primitives in slots [first, end): a leaf's, or those set aside. */
 static void
 test_slots(struct query *q, uint32_t first, uint32_t end)
 {
+    const struct bvh *bvh = &q->w->bvh;
     struct hit h;
     for (uint32_t slot = first; slot < end && !(q->any && q->found); slot++) {
         q->tests++;
-        bool hit = intersect_prim(q->w->scene, q->w->bvh.prims[slot], q->r, q->t_prim, &h);
+        h.prim = bvh->prims[slot];
+        const vec3 *p = bvh->corners[slot].p;
+        bool hit = (unsigned)(h.prim - bvh->first_triangle) < (unsigned)q->w->scene->n_triangles
+                       ? intersect_triangle(p[0], p[1], p[2], q->r, q->t_prim, &h.t, &h.u, &h.v)
+                       : intersect_prim(q->w->scene, h.prim, q->r, q->t_prim, &h);
         if (hit && (!q->found || h.t < q->out->t || h.prim < q->out->prim)) {
             *q->out = h;
             q->found = true;
@@ -180,7 +197,7 @@ traverse(struct query *q)
     stack[0].t = 0;
     while (top > 0 && !(q->any && q->found)) {
         top--;
-        if (stack[top].t > q->t_box) {
+        if (stack[top].t > q->t_box4[0]) {
             continue;
         }
         const struct bvh_wide *node = &q->w->bvh.wide[stack[top].node];
@@ -200,7 +217,7 @@ traverse(struct query *q)
         }
         for (int k = n - 1; k >= 0; k--) { /* leaves, nearest first */
             int i = order[k];
-            if (node->count[i] > 0 && entry[i] <= q->t_box) {
+            if (node->count[i] > 0 && entry[i] <= q->t_box4[0]) {
                 test_slots(q, node->child[i], node->child[i] + node->count[i]);
             }
         }
@@ -223,7 +240,8 @@ bvh_intersect(const struct world *w, ray r, real t_max, bool any, struct hit *ou
         real d = vec3_axis(r.d, i);
         real o = vec3_axis(r.o, i);
         float inv = fabs(1 / d) <= FLT_MAX ? (float)(1 / d) : copysignf(FLT_MAX, (float)d);
-        q.near[i] = inv < 0;
+        q.near[i] = 4 * i + (inv < 0 ? 12 : 0); /* hi[i] is 12 floats after lo[i] */
+        q.far[i] = 4 * i + (inv < 0 ? 0 : 12);
         float below = float_below(o);
         float above = float_above(o);
         q.inv_d[i] = (float4){inv, inv, inv, inv};
