@@ -35,7 +35,8 @@ struct bvh_wide {
     float lo[3][4], hi[3][4]; /* an absent child's box is empty: lo +infinity, hi -infinity */
     uint32_t child[4]; /* inner child: its node; leaf: the first slot of prims */
     uint16_t count[4]; /* primitives of a leaf child; 0 for an inner child */
-    uint8_t pad[8];
+    uint8_t leaves; /* bit i: child i is a leaf */
+    uint8_t pad[7];
 };
 
 struct bvh {

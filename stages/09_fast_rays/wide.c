@@ -53,6 +53,7 @@ widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wid
     for (int i = 0; i < n; i++) {
         const struct bvh_node *c = &tree[open[i]];
         node.count[i] = c->count;
+        node.leaves |= (uint8_t)((c->count > 0) << i);
         node.child[i] = c->count > 0 ? c->index : widen(bvh, tree, open[i], n_wide);
     }
     bvh->wide[at] = node;
@@ -83,7 +84,8 @@ bvh_widen(struct bvh *bvh, const struct world *w)
     }
     uint32_t n_wide = 0;
     if (bvh->nodes[0].count > 0) { /* a single leaf: one wide node with one child */
-        bvh->wide[0] = (struct bvh_wide){.count = {bvh->nodes[0].count}, .child = {bvh->nodes[0].index}};
+        bvh->wide[0] = (struct bvh_wide){
+            .count = {bvh->nodes[0].count}, .child = {bvh->nodes[0].index}, .leaves = 1};
         for (int a = 0; a < 3; a++) {
             for (int i = 0; i < 4; i++) {
                 bvh->wide[0].lo[a][i] = i == 0 ? bvh->nodes[0].lo[a] : INFINITY;
@@ -183,8 +185,9 @@ test_slots(struct query *q, uint32_t first, uint32_t end)
     }
 }
 
-/* From the root: a node's leaves are tested, nearest first, and its inner children pushed, the
- * nearest last (popped first); a child popped beyond the closest hit is skipped. */
+/* From the root: a node's leaves met are tested, then the nearest inner child met is visited next
+ * and the others pushed; a node popped beyond the closest hit is skipped.  The children met are
+ * the set bits of a mask, taken lowest first (__builtin_ctz): no branch on each child. */
 static void
 traverse(struct query *q)
 {
@@ -193,41 +196,39 @@ traverse(struct query *q)
         float t;
     } stack[STACK_SIZE];
     int top = 0;
-    stack[top++].node = 0;
-    stack[0].t = 0;
-    while (top > 0 && !(q->any && q->found)) {
-        top--;
-        if (stack[top].t > q->t_box4[0]) {
-            continue;
-        }
-        const struct bvh_wide *node = &q->w->bvh.wide[stack[top].node];
+    uint32_t id = 0;
+    for (;;) {
+        const struct bvh_wide *node = &q->w->bvh.wide[id];
         float entry[4];
         unsigned mask = meet_boxes(q, node, entry);
         q->visits += 4;
-        int order[4];
-        int n = 0;
-        for (int i = 0; i < 4; i++) { /* the met children, farthest first (insertion sort) */
-            if (mask >> i & 1) {
-                int at = n++;
-                for (; at > 0 && entry[order[at - 1]] < entry[i]; at--) {
-                    order[at] = order[at - 1];
+        for (unsigned leaves = mask & node->leaves; leaves != 0; leaves &= leaves - 1) {
+            int i = __builtin_ctz(leaves);
+            test_slots(q, node->child[i], node->child[i] + node->count[i]);
+        }
+        if (q->any && q->found) {
+            return;
+        }
+        unsigned inner = mask & ~node->leaves;
+        if (inner == 0) { /* the next node on the stack not beyond the closest hit */
+            do {
+                if (top == 0) {
+                    return;
                 }
-                order[at] = i;
-            }
+                top--;
+            } while (stack[top].t > q->t_box4[0]);
+            id = stack[top].node;
+            continue;
         }
-        for (int k = n - 1; k >= 0; k--) { /* leaves, nearest first */
-            int i = order[k];
-            if (node->count[i] > 0 && entry[i] <= q->t_box4[0]) {
-                test_slots(q, node->child[i], node->child[i] + node->count[i]);
-            }
+        int nearest = __builtin_ctz(inner);
+        for (inner &= inner - 1; inner != 0; inner &= inner - 1) {
+            int i = __builtin_ctz(inner);
+            int later = entry[i] < entry[nearest] ? nearest : i;
+            nearest = entry[i] < entry[nearest] ? i : nearest;
+            stack[top].node = node->child[later];
+            stack[top++].t = entry[later];
         }
-        for (int k = 0; k < n; k++) {
-            int i = order[k];
-            if (node->count[i] == 0) {
-                stack[top].node = node->child[i];
-                stack[top++].t = entry[i];
-            }
-        }
+        id = node->child[nearest];
     }
 }
 
