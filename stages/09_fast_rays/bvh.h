@@ -31,12 +31,14 @@ struct bvh_node {
 
 /* 128 bytes, two cache lines: four children's boxes, by axis then child, so that one vector holds
  * an axis's four lower (or upper) bounds. */
+#ifndef BVH_WIDTH
+#define BVH_WIDTH 4 /* children a node: 4 or 8 */
+#endif
 struct bvh_wide {
-    float lo[3][4], hi[3][4]; /* an absent child's box is empty: lo +infinity, hi -infinity */
-    uint32_t child[4]; /* inner child: its node; leaf: the first slot of prims */
-    uint16_t count[4]; /* primitives of a leaf child; 0 for an inner child */
+    float lo[3][BVH_WIDTH], hi[3][BVH_WIDTH]; /* an absent child's box is empty: lo +inf, hi -inf */
+    uint32_t child[BVH_WIDTH]; /* inner child: its node; leaf: the first slot of prims */
+    uint16_t count[BVH_WIDTH]; /* primitives of a leaf child; 0 for an inner child */
     uint8_t leaves; /* bit i: child i is a leaf */
-    uint8_t pad[7];
 };
 
 struct bvh {

@@ -21,9 +21,9 @@ static uint32_t
 widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wide)
 {
     uint32_t at = (*n_wide)++;
-    uint32_t open[4] = {id};
+    uint32_t open[BVH_WIDTH] = {id};
     int n = 1;
-    for (bool opened = true; n < 4 && opened;) {
+    for (bool opened = true; n < BVH_WIDTH && opened;) {
         opened = false;
         int widest = -1;
         real area = -1;
@@ -44,7 +44,7 @@ widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wid
         }
     }
     struct bvh_wide node = {.count = {0}};
-    for (int i = 0; i < 4; i++) {
+    for (int i = 0; i < BVH_WIDTH; i++) {
         for (int a = 0; a < 3; a++) {
             node.lo[a][i] = i < n ? tree[open[i]].lo[a] : INFINITY; /* an empty box: never met */
             node.hi[a][i] = i < n ? tree[open[i]].hi[a] : -INFINITY;
@@ -87,7 +87,7 @@ bvh_widen(struct bvh *bvh, const struct world *w)
         bvh->wide[0] = (struct bvh_wide){
             .count = {bvh->nodes[0].count}, .child = {bvh->nodes[0].index}, .leaves = 1};
         for (int a = 0; a < 3; a++) {
-            for (int i = 0; i < 4; i++) {
+            for (int i = 0; i < BVH_WIDTH; i++) {
                 bvh->wide[0].lo[a][i] = i == 0 ? bvh->nodes[0].lo[a] : INFINITY;
                 bvh->wide[0].hi[a][i] = i == 0 ? bvh->nodes[0].hi[a] : -INFINITY;
             }
@@ -103,8 +103,8 @@ bvh_widen(struct bvh *bvh, const struct world *w)
 }
 
 /* LAB 09: wide traversal */
-typedef float float4 __attribute__((vector_size(16))); /* GCC and Clang: SSE on x86-64, NEON on arm64 */
-typedef int32_t int4 __attribute__((vector_size(16)));
+typedef float float4 __attribute__((vector_size(4 * BVH_WIDTH))); /* GCC, Clang: SSE, NEON */
+typedef int32_t int4 __attribute__((vector_size(4 * BVH_WIDTH)));
 
 /* A query: the ray, prepared for slab tests in float, and the closest hit so far.  As brute force,
  * ties go to the lowest number: after a hit at t, primitives are tested up to the next real
@@ -146,10 +146,10 @@ load4(const float *p)
 /* The slab test of a node's four boxes at once: which the ray meets for some t in [0, t_box], and
  * where it enters them (a bit per child, and entry[]). */
 static inline unsigned
-meet_boxes(const struct query *q, const struct bvh_wide *node, float entry[4])
+meet_boxes(const struct query *q, const struct bvh_wide *node, float entry[BVH_WIDTH])
 {
     const float *bounds = &node->lo[0][0];
-    float4 t_near = {0, 0, 0, 0};
+    float4 t_near = {0};
     float4 t_far = q->t_box4;
     for (int a = 0; a < 3; a++) {
         float4 enter = (load4(bounds + q->near[a]) - q->o_near[a]) * q->inv_d[a];
@@ -157,9 +157,13 @@ meet_boxes(const struct query *q, const struct bvh_wide *node, float entry[4])
         t_near = select4(enter > t_near, enter, t_near);
         t_far = select4(leave < t_far, leave, t_far);
     }
-    int4 met = (t_near <= t_far * EXIT_SCALE) & (int4){1, 2, 4, 8};
+    int4 met = t_near <= t_far * EXIT_SCALE;
     memcpy(entry, &t_near, sizeof t_near);
-    return (unsigned)(met[0] | met[1] | met[2] | met[3]);
+    unsigned mask = 0;
+    for (int i = 0; i < BVH_WIDTH; i++) {
+        mask |= (unsigned)(met[i] & 1) << i;
+    }
+    return mask;
 }
 
 /* The primitives in slots [first, end): a leaf's, or those set aside. */
@@ -179,7 +183,7 @@ test_slots(struct query *q, uint32_t first, uint32_t end)
             *q->out = h;
             q->found = true;
             q->t_box = h.t;
-            q->t_box4 = (float4){1, 1, 1, 1} * float_above(h.t);
+            q->t_box4 = (float4){0} + float_above(h.t);
             q->t_prim = nextafter(h.t, (real)INFINITY);
         }
     }
@@ -199,9 +203,9 @@ traverse(struct query *q)
     uint32_t id = 0;
     for (;;) {
         const struct bvh_wide *node = &q->w->bvh.wide[id];
-        float entry[4];
+        float entry[BVH_WIDTH];
         unsigned mask = meet_boxes(q, node, entry);
-        q->visits += 4;
+        q->visits += BVH_WIDTH;
         for (unsigned leaves = mask & node->leaves; leaves != 0; leaves &= leaves - 1) {
             int i = __builtin_ctz(leaves);
             test_slots(q, node->child[i], node->child[i] + node->count[i]);
@@ -236,18 +240,18 @@ bool
 bvh_intersect(const struct world *w, ray r, real t_max, bool any, struct hit *out, struct stats *st)
 {
     struct query q = {w, r, .any = any, .t_box = t_max, .t_prim = t_max, .out = out};
-    q.t_box4 = (float4){1, 1, 1, 1} * float_above(t_max);
+    q.t_box4 = (float4){0} + float_above(t_max);
     for (int i = 0; i < 3; i++) {
         real d = vec3_axis(r.d, i);
         real o = vec3_axis(r.o, i);
         float inv = fabs(1 / d) <= FLT_MAX ? (float)(1 / d) : copysignf(FLT_MAX, (float)d);
-        q.near[i] = 4 * i + (inv < 0 ? 12 : 0); /* hi[i] is 12 floats after lo[i] */
-        q.far[i] = 4 * i + (inv < 0 ? 0 : 12);
+        q.near[i] = BVH_WIDTH * (i + (inv < 0 ? 3 : 0)); /* hi[i] is 3 BVH_WIDTH floats after lo[i] */
+        q.far[i] = BVH_WIDTH * (i + (inv < 0 ? 0 : 3));
         float below = float_below(o);
         float above = float_above(o);
-        q.inv_d[i] = (float4){inv, inv, inv, inv};
-        q.o_near[i] = (float4){1, 1, 1, 1} * (inv < 0 ? below : above);
-        q.o_far[i] = (float4){1, 1, 1, 1} * (inv < 0 ? above : below);
+        q.inv_d[i] = (float4){0} + inv;
+        q.o_near[i] = (float4){0} + (inv < 0 ? below : above);
+        q.o_far[i] = (float4){0} + (inv < 0 ? above : below);
     }
     test_slots(&q, 0, (uint32_t)w->bvh.n_aside);
     if (w->bvh.n_wide > 0 && !(any && q.found)) {
