@@ -220,7 +220,7 @@ traverse(struct query *q)
                     return;
                 }
                 top--;
-            } while (stack[top].t > q->t_box4[0]);
+            } while (stack[top].t > q->t_box4[0] * EXIT_SCALE);
             id = stack[top].node;
             continue;
         }
