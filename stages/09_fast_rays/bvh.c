@@ -115,58 +115,82 @@ select_kth(struct build_ref *refs, int n, int k, int axis)
     }
 }
 
-/* The bin, of SAH_BINS equal ones over [lo, lo + extent], that centroid c falls in. */
+/* The bin, of SAH_BINS equal ones from lo on (scale: SAH_BINS over their extent), of centroid c. */
 static int
-bin_of(float c, real lo, real extent)
+bin_of(float c, float lo, float scale)
 {
-    int k = (int)((c - lo) / extent * SAH_BINS);
+    int k = (int)((c - lo) * scale);
     return k < 0 ? 0 : k < SAH_BINS ? k : SAH_BINS - 1;
 }
 
+struct bin { /* in float, as the refs' bounds: exact, and half the memory traffic */
+    float lo[3], hi[3];
+    int n;
+};
+
+static void
+bin_add(struct bin *b, const float lo[3], const float hi[3], int n)
+{
+    for (int a = 0; a < 3; a++) {
+        b->lo[a] = lo[a] < b->lo[a] ? lo[a] : b->lo[a];
+        b->hi[a] = hi[a] > b->hi[a] ? hi[a] : b->hi[a];
+    }
+    b->n += n;
+}
+
+/* The surface area of the bin's box (0 for an empty bin). */
+static real
+bin_area(const struct bin *b)
+{
+    real x = (real)b->hi[0] - b->lo[0];
+    real y = (real)b->hi[1] - b->lo[1];
+    real z = (real)b->hi[2] - b->lo[2];
+    return b->n > 0 ? 2 * (x * y + y * z + z * x) : 0;
+}
+
 /* Split refs[0, n) at the plane of least cost, the primitives of the bins below it first, and
- * return how many they are, and the plane's axis; 0 when every centroid falls in one bin.  A ray that meets a box meets
- * a child with the chance of its area over the box's, so the expected cost of testing both
- * children's primitives is proportional to area(below) n(below) + area(above) n(above). */
+ * return how many they are, and the plane's axis; 0 when every centroid falls in one bin.  A ray
+ * that meets a box meets a child with the chance of its area over the box's, so the expected cost
+ * of testing both children's primitives is proportional to area(below) n(below) + area(above)
+ * n(above).  One pass over the refs fills the bins of all three axes. */
 static int
 sah_split(struct build_ref *refs, int n, int *axis_out)
 {
-    struct box c = empty_box;
+    const struct bin empty = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}, 0};
+    struct bin c = empty;
     for (int i = 0; i < n; i++) {
-        c = box_add(c, vec3_make(refs[i].centroid[0], refs[i].centroid[1], refs[i].centroid[2]));
+        bin_add(&c, refs[i].centroid, refs[i].centroid, 0);
+    }
+    float scale[3];
+    struct bin bins[3][SAH_BINS];
+    for (int a = 0; a < 3; a++) {
+        scale[a] = c.hi[a] > c.lo[a] ? SAH_BINS / (c.hi[a] - c.lo[a]) : 0;
+        for (int k = 0; k < SAH_BINS; k++) {
+            bins[a][k] = empty;
+        }
+    }
+    for (int i = 0; i < n; i++) {
+        for (int a = 0; a < 3; a++) {
+            bin_add(&bins[a][bin_of(refs[i].centroid[a], c.lo[a], scale[a])], refs[i].lo, refs[i].hi, 1);
+        }
     }
     real best = REAL_MAX;
     int best_axis = -1;
     int best_plane = 0;
-    for (int axis = 0; axis < 3; axis++) {
-        real lo = vec3_axis(c.lo, axis);
-        real extent = vec3_axis(c.hi, axis) - lo;
-        struct box box[SAH_BINS];
-        int count[SAH_BINS] = {0};
-        for (int k = 0; k < SAH_BINS; k++) {
-            box[k] = empty_box;
-        }
-        for (int i = 0; i < n && extent > 0; i++) {
-            int k = bin_of(refs[i].centroid[axis], lo, extent);
-            const struct build_ref *p = &refs[i];
-            box[k] = box_add(box_add(box[k], vec3_make(p->lo[0], p->lo[1], p->lo[2])),
-                             vec3_make(p->hi[0], p->hi[1], p->hi[2]));
-            count[k]++;
-        }
+    for (int a = 0; a < 3; a++) {
         real above[SAH_BINS]; /* area(above plane k) n(above plane k) */
-        struct box b = empty_box;
-        for (int k = SAH_BINS - 1, m = 0; k > 0; k--) {
-            b = box_add(box_add(b, box[k].lo), box[k].hi);
-            m += count[k];
-            above[k] = m > 0 ? box_area(b) * m : REAL_MAX;
+        struct bin b = empty;
+        for (int k = SAH_BINS - 1; k > 0; k--) {
+            bin_add(&b, bins[a][k].lo, bins[a][k].hi, bins[a][k].n);
+            above[k] = bin_area(&b) * b.n;
         }
-        b = empty_box;
-        for (int k = 1, m = 0; k < SAH_BINS && extent > 0; k++) {
-            b = box_add(box_add(b, box[k - 1].lo), box[k - 1].hi);
-            m += count[k - 1];
-            real cost = box_area(b) * m + above[k];
-            if (m > 0 && m < n && cost < best) {
+        b = empty;
+        for (int k = 1; k < SAH_BINS && scale[a] > 0; k++) {
+            bin_add(&b, bins[a][k - 1].lo, bins[a][k - 1].hi, bins[a][k - 1].n);
+            real cost = bin_area(&b) * b.n + above[k];
+            if (b.n > 0 && b.n < n && cost < best) {
                 best = cost;
-                best_axis = axis;
+                best_axis = a;
                 best_plane = k;
             }
         }
@@ -175,11 +199,9 @@ sah_split(struct build_ref *refs, int n, int *axis_out)
         return 0;
     }
     *axis_out = best_axis;
-    real lo = vec3_axis(c.lo, best_axis);
-    real extent = vec3_axis(c.hi, best_axis) - lo;
     int j = 0;
     for (int i = 0; i < n; i++) {
-        if (bin_of(refs[i].centroid[best_axis], lo, extent) < best_plane) {
+        if (bin_of(refs[i].centroid[best_axis], c.lo[best_axis], scale[best_axis]) < best_plane) {
             struct build_ref swap = refs[i];
             refs[i] = refs[j];
             refs[j++] = swap;
