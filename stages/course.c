@@ -76,6 +76,7 @@ static const char *const stage_names[COURSE_STAGES + 1] = {
     "06_supersample",
     "07_pathtrace",
     "08_variance_reduction",
+    "09_fast_rays",
 };
 
 const struct course_feature *

@@ -16,7 +16,7 @@
 #include "diag.h"
 #include "scene.h"
 
-#define COURSE_STAGES 8
+#define COURSE_STAGES 9
 
 struct course_feature {
     const char *name; /* "area light" */

@@ -61,7 +61,9 @@ widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wid
 bool
 bvh_widen(struct bvh *bvh, const struct world *w)
 {
-    if (bvh->n_nodes == 0) {
+    if (bvh->n_nodes == 0) { /* everything set aside, or nothing to hold */
+        free(bvh->nodes);
+        bvh->nodes = NULL;
         return true;
     }
     const struct scene *s = w->scene;

@@ -189,6 +189,16 @@ scene_box(const struct world *w, vec3 *lo, vec3 *hi)
     }
 }
 
+/* What a walk of the tree found wrong, counted by kind. */
+struct walk {
+    int next_id; /* nodes are numbered in depth-first order */
+    int next_slot; /* leaves cover prims[n_aside, n_prims) in order, without gaps */
+    int depth, leaves, max_leaf;
+    int bad_order, bad_leaf, bad_box, bad_child, bad_prim;
+    int *seen; /* per primitive: how many leaves hold it */
+};
+
+#ifndef BVH_WIDTH /* the binary tree: stages 05 to 08 */
 static bool
 box_holds(const struct bvh_node *outer, vec3 lo, vec3 hi)
 {
@@ -208,14 +218,6 @@ node_holds(const struct bvh_node *outer, const struct bvh_node *inner)
     return box_holds(outer, lo, hi);
 }
 
-/* What a walk of the tree found wrong, counted by kind. */
-struct walk {
-    int next_id; /* nodes are numbered in depth-first order */
-    int next_slot; /* leaves cover prims[n_aside, n_prims) in order, without gaps */
-    int depth, leaves, max_leaf;
-    int bad_order, bad_leaf, bad_box, bad_child, bad_prim;
-    int *seen; /* per primitive: how many leaves hold it */
-};
 
 static void
 walk_leaf(const struct bvh *bvh, const struct world *w, const struct bvh_node *node, struct walk *k)
@@ -282,6 +284,8 @@ walk_tree(const struct bvh *bvh, const struct world *w, struct walk *k)
     }
 }
 
+#endif
+
 /* The primitives set aside: at most BVH_MAX_ASIDE, valid numbers; counted
  * in k->seen. */
 static void
@@ -300,6 +304,7 @@ check_aside(const struct bvh *bvh, const struct world *w, struct walk *k)
     k->next_slot = bvh->n_aside;
 }
 
+#ifndef BVH_WIDTH
 /* Levels a median split of n primitives makes: halving until a leaf. */
 static int
 median_split_depth(int n)
@@ -351,6 +356,134 @@ check_structure(const struct bvh *bvh, const struct world *w)
     CHECK(k.depth == (in_tree == 0 ? 0 : median_split_depth(in_tree)));
     CHECK(k.max_leaf <= BVH_MAX_LEAF);
 }
+#endif
+
+#ifdef BVH_WIDTH
+/*
+ * Stage 09 on: the binary tree is widened (bvh.h's struct bvh_wide) and its
+ * nodes freed.  The same invariants, for BVH_WIDTH children a node: every
+ * primitive in exactly one leaf or set aside; leaves of 1..BVH_MAX_LEAF
+ * primitives, together covering each slot of prims[n_aside, n_prims) once;
+ * the nodes numbered depth first; child i's box holding its primitives, or
+ * its own children's boxes; an absent child's box empty and never a leaf;
+ * at most 80 levels (the build splits by the SAH to depth 48, then at the
+ * median: the traversal's stack holds 3 a level).
+ */
+static bool
+wide_holds(const struct bvh_wide *node, int i, vec3 lo, vec3 hi)
+{
+    for (int a = 0; a < 3; a++) {
+        if (!((real)node->lo[a][i] <= vec3_axis(lo, a) && vec3_axis(hi, a) <= (real)node->hi[a][i])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+static void
+walk_wide(const struct bvh *bvh, const struct world *w, uint32_t id, int depth, struct walk *k, int *slots)
+{
+    k->bad_order += id != (uint32_t)k->next_id++;
+    k->depth = depth > k->depth ? depth : k->depth;
+    const struct bvh_wide *node = &bvh->wide[id];
+    for (int i = 0; i < BVH_WIDTH && k->bad_child == 0 && depth <= 80; i++) {
+        bool leaf = node->leaves >> i & 1;
+        if (!(node->lo[0][i] <= node->hi[0][i])) { /* absent */
+            k->bad_child += leaf || node->count[i] != 0 || node->lo[0][i] != INFINITY;
+            continue;
+        }
+        if (leaf != (node->count[i] > 0)) {
+            k->bad_child++;
+            continue;
+        }
+        if (leaf) {
+            k->leaves++;
+            k->max_leaf = node->count[i] > k->max_leaf ? node->count[i] : k->max_leaf;
+            uint32_t first = node->child[i];
+            if (first < (uint32_t)bvh->n_aside || first + node->count[i] > (uint32_t)bvh->n_prims) {
+                k->bad_leaf++;
+                continue;
+            }
+            for (uint32_t slot = first; slot < first + node->count[i]; slot++) {
+                int prim = bvh->prims[slot];
+                slots[slot]++;
+                if (prim < 0 || prim >= w->n_prims) {
+                    k->bad_prim++;
+                    continue;
+                }
+                k->seen[prim]++;
+                vec3 lo;
+                vec3 hi;
+                prim_box(w, prim, &lo, &hi);
+                k->bad_box += !wide_holds(node, i, lo, hi);
+            }
+            continue;
+        }
+        uint32_t c = node->child[i];
+        if (c <= id || c >= (uint32_t)bvh->n_wide) {
+            k->bad_child++;
+            continue;
+        }
+        const struct bvh_wide *child = &bvh->wide[c];
+        for (int j = 0; j < BVH_WIDTH; j++) {
+            if (child->lo[0][j] <= child->hi[0][j]) {
+                vec3 lo = vec3_make(child->lo[0][j], child->lo[1][j], child->lo[2][j]);
+                vec3 hi = vec3_make(child->hi[0][j], child->hi[1][j], child->hi[2][j]);
+                k->bad_box += !wide_holds(node, i, lo, hi);
+            }
+        }
+        walk_wide(bvh, w, c, depth + 1, k, slots);
+    }
+}
+
+static void
+check_structure(const struct bvh *bvh, const struct world *w)
+{
+    CHECK(bvh->n_prims == w->n_prims);
+    if (w->n_prims == 0) {
+        CHECK(bvh->n_wide == 0 && bvh->n_aside == 0);
+        return;
+    }
+    int in_tree = w->n_prims - bvh->n_aside;
+    if (in_tree > 0 && (bvh->n_wide < 1 || !bvh->wide)) {
+        CHECK_MSG(false, "no nodes for %d primitives: bvh_build built no tree", in_tree);
+        return;
+    }
+    CHECK_MSG(bvh->nodes == NULL, "the binary nodes are kept after widening");
+    struct walk k = {.seen = calloc((size_t)w->n_prims, sizeof(int))};
+    int *slots = calloc((size_t)w->n_prims, sizeof(int));
+    CHECK(k.seen != NULL && slots != NULL && bvh->n_wide <= 2 * in_tree - 1 + (in_tree == 0));
+    if (!k.seen || !slots) {
+        free(k.seen);
+        free(slots);
+        return;
+    }
+    check_aside(bvh, w, &k);
+    if (in_tree > 0) {
+        walk_wide(bvh, w, 0, 1, &k, slots);
+    }
+    int not_once = 0;
+    int slots_not_once = 0;
+    for (int prim = 0; prim < w->n_prims; prim++) {
+        not_once += k.seen[prim] != 1;
+        slots_not_once += prim >= bvh->n_aside && slots[prim] != 1;
+    }
+    free(k.seen);
+    free(slots);
+    CHECK_MSG(not_once == 0, "%d primitives not in exactly one leaf or set aside", not_once);
+    CHECK_MSG(slots_not_once == 0, "%d slots not in exactly one leaf", slots_not_once);
+    CHECK_MSG(
+        k.bad_order == 0 && k.bad_child == 0,
+        "%d nodes out of depth-first order, %d bad children",
+        k.bad_order,
+        k.bad_child);
+    CHECK_MSG(k.bad_leaf == 0 && k.bad_prim == 0, "%d bad leaves, %d bad numbers", k.bad_leaf, k.bad_prim);
+    CHECK_MSG(k.bad_box == 0, "%d boxes not holding their contents", k.bad_box);
+    CHECK(in_tree == 0 || k.next_id == bvh->n_wide);
+    CHECK_MSG(k.depth <= 80, "%d levels", k.depth);
+    CHECK(k.max_leaf <= BVH_MAX_LEAF);
+}
+#endif
 
 /* Build over s, check the structure, and keep the BVH in *bvh. */
 static void

@@ -94,6 +94,7 @@ random_soup(struct rng *rng, int n_each, struct scene *s)
     return ok;
 }
 
+#ifndef BVH_WIDTH /* stages 05 to 08; from 09 on the tree is split by the SAH, and wide */
 /* A primitive's centroid as the build computes it (float, rounded down). */
 static float
 centroid(const struct world *w, int prim, int axis)
@@ -205,8 +206,14 @@ check_node(const struct world *w, uint32_t id, int first, int depth)
     return end;
 }
 
+#endif
+
 TEST(build_subtree_splits_at_the_median_of_the_widest_axis)
 {
+#ifdef BVH_WIDTH
+    SKIP("from stage 09 on the tree is split by the surface area heuristic and widened: "
+         "05_bvh checks its structure and 09_lab_functions its splits");
+#else
     struct rng rng = rng_make(5001, 1);
     static const int sizes[] = {1, 2, 5, 40, 300};
     for (int k = 0; k < 5 && !check_current.failed_checks; k++) {
@@ -243,6 +250,7 @@ TEST(build_subtree_splits_at_the_median_of_the_widest_axis)
         bvh_free(&w.bvh);
         scene_free(&s);
     }
+#endif
 }
 
 TEST(bvh_intersect_finds_what_brute_force_finds)
