@@ -13,7 +13,6 @@
 #include "geometry.h"
 
 #define MARGIN (256 * REAL_EPSILON) /* of the scene's largest coordinate: boxes widen by it */
-#define SAH_BINS 16 /* planes per axis: SAH_BINS - 1 (Wald 2007: 16 lose little to every plane) */
 #define SAH_MAX_DEPTH 48 /* deeper nodes split at the median: the tree has < 48 + 31 levels */
 #define STACK_SIZE 256 /* 3 a level: a tree of < 80 binary levels has < 80 wide ones */
 
@@ -117,6 +116,9 @@ select_kth(struct build_ref *refs, int n, int k, int axis)
     }
 }
 
+/* END LAB */
+
+/* LAB 09: SAH split */
 /* The bin, of SAH_BINS equal ones from lo on (scale: SAH_BINS over their extent), of centroid c. */
 static int
 bin_of(float c, float lo, float scale)
@@ -155,7 +157,7 @@ bin_area(const struct bin *b)
  * that meets a box meets a child with the chance of its area over the box's, so the expected cost
  * of testing both children's primitives is proportional to area(below) n(below) + area(above)
  * n(above).  One pass over the refs fills the bins of all three axes. */
-static int
+int
 sah_split(struct build_ref *refs, int n, int *axis_out)
 {
     const struct bin empty = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}, 0};
@@ -212,6 +214,8 @@ sah_split(struct build_ref *refs, int n, int *axis_out)
     return j;
 }
 
+/* END LAB */
+
 /* Lay out the subtree over refs[begin, end) as the next nodes, depth first, and return the box
  * around its primitives; the node's is that box widened by the margin, rounded outward to float. */
 static struct box
@@ -250,7 +254,6 @@ build_subtree(
     }
     return b;
 }
-/* END LAB */
 
 /* The centroids (a NaN one made -infinity by float_below), then the tree. */
 bool
@@ -306,7 +309,6 @@ bvh_free(struct bvh *bvh)
     *bvh = (struct bvh){.nodes = NULL};
 }
 
-/* LAB 09: wide traversal */
 typedef float float4 __attribute__((vector_size(4 * BVH_WIDTH))); /* GCC, Clang: SSE, NEON */
 typedef int32_t int4 __attribute__((vector_size(4 * BVH_WIDTH)));
 
@@ -347,6 +349,7 @@ load4(const float *p)
     return v;
 }
 
+/* LAB 09: four boxes at once */
 /* The slab test of a node's four boxes at once: which the ray meets for some t in [0, t_box], and
  * where it enters them (a bit per child, and entry[]). */
 static inline unsigned
@@ -369,6 +372,8 @@ meet_boxes(const struct query *q, const struct bvh_wide *node, float entry[BVH_W
     }
     return mask;
 }
+
+/* END LAB */
 
 /* The primitives in slots [first, end): a leaf's, or those set aside. */
 static void
@@ -393,6 +398,7 @@ test_slots(struct query *q, uint32_t first, uint32_t end)
     }
 }
 
+/* LAB 09: wide traversal */
 /* From the root: a node's leaves met are tested, then the nearest inner child met is visited next
  * and the others pushed; a node popped beyond the closest hit is skipped.  The children met are
  * the set bits of a mask, taken lowest first (__builtin_ctz): no branch on each child. */
@@ -440,6 +446,8 @@ traverse(struct query *q)
     }
 }
 
+/* END LAB */
+
 bool
 bvh_intersect(const struct world *w, ray r, real t_max, bool any, struct hit *out, struct stats *st)
 {
@@ -465,4 +473,3 @@ bvh_intersect(const struct world *w, ray r, real t_max, bool any, struct hit *ou
     st->prim_tests += q.tests;
     return q.found;
 }
-/* END LAB */

@@ -14,6 +14,7 @@
 #ifndef BVH_MAX_LEAF
 #define BVH_MAX_LEAF 2 /* most primitives in a leaf (tests/bench measures others) */
 #endif
+#define SAH_BINS 16 /* planes per axis: SAH_BINS - 1 (Wald 2007: 16 lose little to every plane) */
 #ifndef BVH_MAX_ASIDE
 #define BVH_MAX_ASIDE 8 /* most primitives set aside (aside.c) */
 #endif
@@ -85,6 +86,10 @@ struct box prim_bounds(const struct world *w, int prim);
 
 /* aside.c: the surface area of b (0 for an empty or flat-less box). */
 real box_area(struct box b);
+
+/* bvh.c: split refs[0, n) by the surface area heuristic, the refs below the plane first; returns
+ * how many, and the plane's axis in *axis (0 when every centroid falls in one bin). */
+int sah_split(struct build_ref *refs, int n, int *axis);
 
 /* aside.c: move the primitives set aside to refs[0, n) and return n. */
 int set_aside(const struct world *w, struct build_ref *refs, struct box scene);

@@ -10,6 +10,7 @@
 
 #include "geometry.h"
 
+/* LAB 09: collapse */
 /* The binary subtree at id, gathered into wide node `at` (children numbered later), depth first:
  * the child of largest box area is opened until four (or only leaves) are left. */
 static uint32_t
@@ -54,6 +55,8 @@ widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wid
     bvh->wide[at] = node;
     return at;
 }
+
+/* END LAB */
 
 /* Replace the binary nodes by wide ones (at most as many: each holds two or more binary nodes),
  * and copy each triangle's corners to its slot: a leaf's triangles are then side by side in memory,

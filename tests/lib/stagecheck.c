@@ -286,3 +286,68 @@ stagecheck_fresnel(double cos_i, double eta)
     double rp = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
     return (rs * rs + rp * rp) / 2;
 }
+
+/* A soup of n_each spheres, quads and triangles in [-1, 1]^3, and four
+ * quads ten times larger. */
+bool
+stagecheck_random_soup(struct rng *rng, int n_each, struct scene *s)
+{
+    size_t cap = (size_t)n_each * 400 + 2048;
+    char *text = malloc(cap);
+    if (!text) {
+        return false;
+    }
+    int n = snprintf(
+        text,
+        cap,
+        "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\nimage width 4 height 4\n"
+        "material m diffuse albedo 0.5 0.5 0.5\n");
+    for (int i = 0; i < n_each + 4; i++) {
+        double c[3];
+        double e1[3];
+        double e2[3];
+        double size = i < n_each ? 0.2 : 3;
+        for (int k = 0; k < 3; k++) {
+            c[k] = 2 * (double)rng_uniform(rng) - 1;
+            e1[k] = size * (2 * (double)rng_uniform(rng) - 1);
+            e2[k] = size * (2 * (double)rng_uniform(rng) - 1);
+        }
+        n += snprintf(
+            text + n,
+            cap - (size_t)n,
+            "quad corner %.9g %.9g %.9g edge1 %.9g %.9g %.9g edge2 %.9g %.9g %.9g material m\n",
+            c[0],
+            c[1],
+            c[2],
+            e1[0],
+            e1[1],
+            e1[2],
+            e2[0],
+            e2[1],
+            e2[2]);
+        if (i >= n_each) {
+            continue;
+        }
+        n += snprintf(
+            text + n,
+            cap - (size_t)n,
+            "sphere center %.9g %.9g %.9g radius %.9g material m\n"
+            "triangle v0 %.9g %.9g %.9g v1 %.9g %.9g %.9g v2 %.9g %.9g %.9g material m\n",
+            c[1],
+            c[2],
+            c[0],
+            0.02 + 0.08 * (double)rng_uniform(rng),
+            c[2],
+            c[0],
+            c[1],
+            c[2] + e1[0],
+            c[0] + e1[1],
+            c[1] + e1[2],
+            c[2] + e2[0],
+            c[0] + e2[1],
+            c[1] + e2[2]);
+    }
+    bool ok = stagecheck_load_text(text, s);
+    free(text);
+    return ok;
+}

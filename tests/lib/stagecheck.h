@@ -103,6 +103,12 @@ double stagecheck_triangle_solid_angle(double corners[3][3], const double x[3]);
  * do not want it.) */
 void stagecheck_random_unit(struct rng *rng, double out[3]);
 
+/* A soup of n_each spheres, quads and triangles in [-1, 1]^3, and four
+ * quads ten times larger (rng.h before this header); false when the scene
+ * does not load. */
+struct scene;
+bool stagecheck_random_soup(struct rng *rng, int n_each, struct scene *s);
+
 #ifdef VEC3_H
 /* The same as a vec3, for white-box tests (which include vec3.h, through
  * rng.h, before this header). */

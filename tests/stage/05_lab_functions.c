@@ -29,71 +29,6 @@
 #include "rng.h"
 #include "stagecheck.h"
 
-/* A soup of n_each spheres, quads and triangles in [-1, 1]^3, and four
- * quads ten times larger. */
-static bool
-random_soup(struct rng *rng, int n_each, struct scene *s)
-{
-    size_t cap = (size_t)n_each * 400 + 2048;
-    char *text = malloc(cap);
-    if (!text) {
-        return false;
-    }
-    int n = snprintf(
-        text,
-        cap,
-        "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\nimage width 4 height 4\n"
-        "material m diffuse albedo 0.5 0.5 0.5\n");
-    for (int i = 0; i < n_each + 4; i++) {
-        double c[3];
-        double e1[3];
-        double e2[3];
-        double size = i < n_each ? 0.2 : 3;
-        for (int k = 0; k < 3; k++) {
-            c[k] = 2 * (double)rng_uniform(rng) - 1;
-            e1[k] = size * (2 * (double)rng_uniform(rng) - 1);
-            e2[k] = size * (2 * (double)rng_uniform(rng) - 1);
-        }
-        n += snprintf(
-            text + n,
-            cap - (size_t)n,
-            "quad corner %.9g %.9g %.9g edge1 %.9g %.9g %.9g edge2 %.9g %.9g %.9g material m\n",
-            c[0],
-            c[1],
-            c[2],
-            e1[0],
-            e1[1],
-            e1[2],
-            e2[0],
-            e2[1],
-            e2[2]);
-        if (i >= n_each) {
-            continue;
-        }
-        n += snprintf(
-            text + n,
-            cap - (size_t)n,
-            "sphere center %.9g %.9g %.9g radius %.9g material m\n"
-            "triangle v0 %.9g %.9g %.9g v1 %.9g %.9g %.9g v2 %.9g %.9g %.9g material m\n",
-            c[1],
-            c[2],
-            c[0],
-            0.02 + 0.08 * (double)rng_uniform(rng),
-            c[2],
-            c[0],
-            c[1],
-            c[2] + e1[0],
-            c[0] + e1[1],
-            c[1] + e1[2],
-            c[2] + e2[0],
-            c[0] + e2[1],
-            c[1] + e2[2]);
-    }
-    bool ok = stagecheck_load_text(text, s);
-    free(text);
-    return ok;
-}
-
 #ifndef BVH_WIDTH /* stages 05 to 08; from 09 on the tree is split by the SAH, and wide */
 /* A primitive's centroid as the build computes it (float, rounded down). */
 static float
@@ -218,7 +153,7 @@ TEST(build_subtree_splits_at_the_median_of_the_widest_axis)
     static const int sizes[] = {1, 2, 5, 40, 300};
     for (int k = 0; k < 5 && !check_current.failed_checks; k++) {
         struct scene s;
-        CHECK(random_soup(&rng, sizes[k], &s));
+        CHECK(stagecheck_random_soup(&rng, sizes[k], &s));
         if (check_current.failed_checks) {
             return;
         }
@@ -259,7 +194,7 @@ TEST(bvh_intersect_finds_what_brute_force_finds)
     int reported = 0;
     for (int k = 0; k < 3 && reported == 0; k++) {
         struct scene s;
-        CHECK(random_soup(&rng, 100 + 100 * k, &s));
+        CHECK(stagecheck_random_soup(&rng, 100 + 100 * k, &s));
         if (check_current.failed_checks) {
             return;
         }
