@@ -11,13 +11,13 @@
 #include "geometry.h"
 
 /* LAB 09: collapse */
-/* The binary subtree at id, gathered into wide node `at` (children numbered later), depth first:
- * the child of largest box area is opened until four (or only leaves) are left. */
-static uint32_t
-widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wide)
+/* The nodes of the binary subtree at id that become a wide node's children, in open[]; returns how
+ * many.  The inner one of largest box area is opened (replaced by its two children) until there
+ * are BVH_WIDTH or only leaves: the boxes a ray meets most often go first (MacDonald and Booth). */
+static int
+gather_children(const struct bvh_node *tree, uint32_t id, uint32_t open[BVH_WIDTH])
 {
-    uint32_t at = (*n_wide)++;
-    uint32_t open[BVH_WIDTH] = {id};
+    open[0] = id;
     int n = 1;
     for (bool opened = true; n < BVH_WIDTH && opened;) {
         opened = false;
@@ -39,6 +39,17 @@ widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wid
             opened = true;
         }
     }
+    return n;
+}
+/* END LAB */
+
+/* The binary subtree at id as wide node number *n_wide and the nodes after it, depth first. */
+static uint32_t
+widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wide)
+{
+    uint32_t at = (*n_wide)++;
+    uint32_t open[BVH_WIDTH];
+    int n = gather_children(tree, id, open);
     struct bvh_wide node = {.count = {0}};
     for (int i = 0; i < BVH_WIDTH; i++) {
         for (int a = 0; a < 3; a++) {
@@ -55,8 +66,6 @@ widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wid
     bvh->wide[at] = node;
     return at;
 }
-
-/* END LAB */
 
 /* Replace the binary nodes by wide ones (at most as many: each holds two or more binary nodes),
  * and copy each triangle's corners to its slot: a leaf's triangles are then side by side in memory,

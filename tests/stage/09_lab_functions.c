@@ -9,16 +9,18 @@
  *    among the planes between SAH_BINS equal bins of the centroids' extent
  *    on each axis (within 1e-3: a centroid on a bin's edge may fall either
  *    way).
- *  - widen, through bvh_build: a node has fewer than BVH_WIDTH children
+ *  - gather_children, through bvh_build (widen): a node has fewer than BVH_WIDTH children
  *    only when all of them are leaves (the collapse opens inner children
  *    while there is room).  05_bvh checks the rest of the wide tree.
  *  - meet_boxes, through bvh_intersect on eight small triangles in four
  *    pairs, which the build puts in one node with four leaves (no stack,
  *    no traversal order): every hit brute force finds, for rays through
  *    the triangles' corners and edges (which lie on the leaves' boxes),
- *    along the axes and not, and far from the origin (1e3, 1e6).
+ *    along the axes and not, and far from the origin (1e3, 1e6); a ray
+ *    that misses every box tests no primitive.
  *  - traverse: on random soups of 3,000 and 9,000 primitives, the closest
- *    hit and any-hit answer brute force's; the nearest child first: a
+ *    hit and any-hit answer brute force's; at least the nodes whose boxes
+ *    the ray meets before its hit are visited; the nearest child first: a
  *    closest-hit ray visits at most 1.4 times the nodes whose boxes meet it
  *    before its hit (measured 1.08x and 1.11x; the farthest child first
  *    1.74x); an any-hit ray stops at its first hit: on blocked rays it
@@ -204,7 +206,7 @@ present(const struct bvh_wide *node, int i)
     return node->lo[0][i] <= node->hi[0][i];
 }
 
-TEST(widen_fills_each_node)
+TEST(gather_children_fills_each_node)
 {
     struct rng rng = rng_make(9002, 2);
     static const int sizes[] = {1, 3, 10, 60, 400};
@@ -227,8 +229,8 @@ TEST(widen_fills_each_node)
         }
         CHECK_MSG(
             partial == 0,
-            "widen: %d of %d nodes have fewer than %d children and an inner one among them: open the "
-            "inner child of largest box until the node is full or only leaves are left",
+            "gather_children: %d of %d nodes have fewer than %d children and an inner one among them: "
+            "open the inner child of largest box until the node is full or only leaves are left",
             partial,
             w.bvh.n_wide,
             BVH_WIDTH);
@@ -301,7 +303,7 @@ TEST(meet_boxes_keeps_every_hit)
         if (tree.bvh.n_wide != 1 || tree.bvh.wide[0].leaves != (1u << BVH_WIDTH) - 1) {
             CHECK_FAIL(
                 "the build did not put eight triangles in one node of %d leaves (%d nodes): "
-                "check widen and sah_split first",
+                "check gather_children and sah_split first",
                 BVH_WIDTH,
                 tree.bvh.n_wide);
             bvh_free(&tree.bvh);
@@ -327,6 +329,22 @@ TEST(meet_boxes_keeps_every_hit)
                 }
             }
         }
+        int tested = 0; /* rays beside the plane, along it: they meet no box */
+        for (int m = 0; m < 64; m++) {
+            vec3 d = stagecheck_random_vec3(&rng);
+            d.z = 0;
+            d = vec3_normalize(vec3_add(d, vec3_make(0, 0, (real)1e-3))); /* not parallel to a box */
+            ray r = {vec3_add(at, vec3_make(0, 0, (real)(0.5 + 0.01 * m))), d};
+            struct hit h;
+            struct stats st = {0};
+            wrong += bvh_intersect(&tree, r, REAL_MAX, false, &h, &st);
+            tested += (int)st.prim_tests;
+        }
+        CHECK_MSG(
+            tested == 0,
+            "meet_boxes: 64 rays above four flat leaves, which meet none of their boxes, tested %d "
+            "primitives: a box the ray misses is not met",
+            tested);
         CHECK_MSG(
             wrong == 0,
             "meet_boxes: %d of %d rays through the corners and edges of eight triangles in four leaves, "
@@ -427,6 +445,12 @@ TEST(traverse_visits_the_nearest_child_first)
             wrong,
             tree.n_prims);
         CHECK_MSG(
+            visited >= 0.99 * needed,
+            "traverse: %.2f nodes visited a ray where %.2f boxes meet it before its hit: descend into "
+            "the tree (every child whose box the ray meets before the closest hit)",
+            visited / 2000,
+            needed / 2000);
+        CHECK_MSG(
             visited <= 1.4 * needed,
             "traverse: %.2f nodes visited a ray where %.2f boxes meet it before its hit: visit the "
             "nearest child first, push the others, and skip a popped node beyond the closest hit",
@@ -448,6 +472,6 @@ TEST(traverse_visits_the_nearest_child_first)
 
 TEST_MAIN(
     TEST_ENTRY(sah_split_takes_the_cheapest_plane),
-    TEST_ENTRY(widen_fills_each_node),
+    TEST_ENTRY(gather_children_fills_each_node),
     TEST_ENTRY(meet_boxes_keeps_every_hit),
     TEST_ENTRY(traverse_visits_the_nearest_child_first))
