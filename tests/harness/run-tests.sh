@@ -18,7 +18,10 @@
 #                  program runs (each counts as failed: not run)
 # Environment: TEST_LOG_DIR (each program's log; default the current
 # directory),
-# TEST_TIMEOUT (seconds a program may run, default 600).
+# TEST_TIMEOUT (seconds a program may run, default 600),
+# TEST_JOBS (programs run at once, default one a processor: the programs are
+# dealt round-robin to that many lanes, each running its share one after
+# another; the lines are printed in the programs' order all the same).
 # Each program runs with a private TMPDIR (also its TEST_TMPDIR: testlib's
 # directory) that is removed when it ends, also when it crashes or the run is
 # interrupted, so a run leaves nothing behind.
@@ -42,16 +45,21 @@ skipped=0
 logdir=${TEST_LOG_DIR:-.}
 limit=${TEST_TIMEOUT:-600}
 
-# The program running now and its private temporary directory, for the
-# interrupt handler.
-pid=
-private=
+jobs=${TEST_JOBS:-$(getconf _NPROCESSORS_ONLN 2>/dev/null || echo 1)}
+case $jobs in '' | *[!0-9]* | 0) jobs=1 ;; esac
+
+# The lanes running now, and where they leave each program's exit status
+# and seconds ($runs/K for the K-th program), for the interrupt handler.
+lanes=
+runs=
 cleanup() {
-    if [ -n "$pid" ]; then
-        kill -TERM "$pid" 2>/dev/null
-        wait "$pid" 2>/dev/null
-    fi
-    [ -n "$private" ] && rm -rf "$private"
+    for l in $lanes; do
+        kill -TERM "$l" 2>/dev/null
+    done
+    for l in $lanes; do
+        wait "$l" 2>/dev/null
+    done
+    [ -n "$runs" ] && rm -rf "$runs"
 }
 trap 'cleanup; exit 130' INT
 trap 'cleanup; exit 143' TERM HUP
@@ -77,32 +85,73 @@ for req in $required; do
     fi
 done
 
+# runnable PROGRAM - whether PROGRAM is there to run (built, when --built).
+runnable() {
+    [ -z "$missing" ] && [ -x "$1" ] && { [ "$built" -eq 0 ] || [ -e "$1.built" ]; }
+}
+
+# run_lane LANE PROGRAM... - run the programs dealt to lane LANE (the K-th
+# when K mod jobs is LANE), one after another, each with a private TMPDIR
+# (also its TEST_TMPDIR: testlib's directory), removed when it ends; its
+# status and seconds go to $runs/K.  On TERM: stop the program running (in
+# the background, so that the signal reaches the handler at once; timeout
+# runs it in a process group of its own: with-timeout.sh), remove its
+# directory, exit.
+run_lane() {
+    lane=$1
+    shift
+    pid=
+    private=
+    trap '[ -n "$pid" ] && { kill -TERM "$pid" 2>/dev/null; wait "$pid" 2>/dev/null; }; [ -n "$private" ] && rm -rf "$private"; exit 143' TERM
+    k=0
+    for prog in "$@"; do
+        if [ $((k % jobs)) -eq "$lane" ] && runnable "$prog"; then
+            private=$(mktemp -d "${TMPDIR:-/tmp}/p.XXXXXX") || exit 2
+            start=$(date +%s)
+            TMPDIR=$private TEST_TMPDIR=$private "$(dirname "$0")/with-timeout.sh" "$limit" "$prog" \
+                >"$logdir/$label-$(basename "$prog").log" 2>&1 </dev/null &
+            pid=$!
+            wait "$pid"
+            status=$?
+            pid=
+            rm -rf "$private"
+            private=
+            echo "$status $(($(date +%s) - start))" >"$runs/$k"
+        fi
+        k=$((k + 1))
+    done
+}
+
+runs=$(mktemp -d "${TMPDIR:-/tmp}/runs.XXXXXX") || exit 2
+lane=0
+while [ "$lane" -lt "$jobs" ] && [ "$lane" -lt $# ]; do
+    run_lane "$lane" "$@" &
+    lanes="$lanes $!"
+    lane=$((lane + 1))
+done
+for l in $lanes; do
+    wait "$l"
+done
+lanes=
+
+k=0
 for prog in "$@"; do
     name=$(basename "$prog")
+    this=$k
+    k=$((k + 1))
     if [ -n "$missing" ]; then
         fail "$name: not run (a program it needs did not build)"
         continue
     fi
-    if [ ! -x "$prog" ] || { [ "$built" -eq 1 ] && [ ! -e "$prog.built" ]; }; then
+    if ! runnable "$prog"; then
         fail "$name: did not build"
         show_build_errors "$name"
         continue
     fi
     log="$logdir/$label-$name.log"
-    private=$(mktemp -d "${TMPDIR:-/tmp}/p.XXXXXX") || exit 2
-    start=$(date +%s)
-    # In the background so that an interrupt reaches the handler at once;
-    # timeout runs the program in a process group of its own (with-timeout.sh:
-    # timeout(1), or a shell watchdog where it is absent).
-    TMPDIR=$private TEST_TMPDIR=$private "$(dirname "$0")/with-timeout.sh" "$limit" "$prog" \
-        >"$log" 2>&1 </dev/null &
-    pid=$!
-    wait "$pid"
-    status=$?
-    pid=
-    rm -rf "$private"
-    private=
-    secs=$(($(date +%s) - start))
+    status=125
+    secs=0
+    [ -f "$runs/$this" ] && read -r status secs <"$runs/$this"
     line=$(grep -E '^[0-9]+ passed, [0-9]+ failed' "$log" | tail -n 1)
     if [ "$status" -eq 124 ] || [ "$status" -eq 137 ]; then
         fail "$name: timed out after $limit s (log: $log)"
@@ -133,5 +182,7 @@ for prog in "$@"; do
     failed=$((failed + f))
     skipped=$((skipped + s))
 done
+rm -rf "$runs"
+runs=
 echo "$passed passed, $failed failed, $skipped skipped"
 [ "$failed" -eq 0 ]
