@@ -1,15 +1,18 @@
 /*
- * 05_lab_functions.c - lab 05's functions, each on its own (tests/lab/
- * README.md, "Function tests"), on random soups of spheres, quads and
- * triangles (a few large quads among them, which the build sets aside).
+ * 05-08_lab_functions.c - lab 05's functions, each on its own (tests/lab/
+ * README.md, "Function tests"), in the stages whose tree is lab 05's (from
+ * stage 09 on it is split by the surface area heuristic, widened and
+ * traversed by lab 09's functions: 09_lab_functions.c).
  *
- *  - build_subtree, through bvh_build: every primitive is in the tree (or
- *    set aside) exactly once; leaves hold 1 to BVH_MAX_LEAF primitives;
- *    the nodes are laid out depth first (an interior node's first child
- *    next to it); every node's box contains the bounds (prim_bounds) of
- *    every primitive below it; an interior node splits its primitives at
- *    the median (the halves differ by at most one) along the axis where
- *    their centroids spread most, the lower centroids in the first child.
+ *  - build_subtree, through bvh_build, on random soups of spheres, quads
+ *    and triangles (a few large quads among them, which the build sets
+ *    aside): every primitive is in the tree (or set aside) exactly once;
+ *    leaves hold 1 to BVH_MAX_LEAF primitives; the nodes are laid out depth
+ *    first (an interior node's first child next to it); every node's box
+ *    contains the bounds (prim_bounds) of every primitive below it; an
+ *    interior node splits its primitives at the median (the halves differ
+ *    by at most one) along the axis where their centroids spread most, the
+ *    lower centroids in the first child.
  *  - bvh_intersect: on 3,000 rays per soup, from outside and inside, with
  *    and without a t_max, the closest hit is brute force's (the same
  *    primitive and t; ties to the lower number), the any-hit query
@@ -29,7 +32,6 @@
 #include "rng.h"
 #include "stagecheck.h"
 
-#ifndef BVH_WIDTH /* stages 05 to 08; from 09 on the tree is split by the SAH, and wide */
 /* A primitive's centroid as the build computes it (float, rounded down). */
 static float
 centroid(const struct world *w, int prim, int axis)
@@ -141,14 +143,8 @@ check_node(const struct world *w, uint32_t id, int first, int depth)
     return end;
 }
 
-#endif
-
 TEST(build_subtree_splits_at_the_median_of_the_widest_axis)
 {
-#ifdef BVH_WIDTH
-    SKIP("from stage 09 on the tree is split by the surface area heuristic and widened: "
-         "05_bvh checks its structure and 09_lab_functions its splits");
-#else
     struct rng rng = rng_make(5001, 1);
     static const int sizes[] = {1, 2, 5, 40, 300};
     for (int k = 0; k < 5 && !check_current.failed_checks; k++) {
@@ -185,7 +181,6 @@ TEST(build_subtree_splits_at_the_median_of_the_widest_axis)
         bvh_free(&w.bvh);
         scene_free(&s);
     }
-#endif
 }
 
 TEST(bvh_intersect_finds_what_brute_force_finds)
