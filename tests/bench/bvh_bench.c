@@ -21,6 +21,7 @@
 #define SPHERE_BANDS 500 /* the stand-in: 4 * 500^2 = 1M triangles */
 #define BRUTE_STRIDE 1024 /* brute force traces every 1024th camera ray */
 
+#ifndef BVH_WIDTH
 /* Levels of the subtree at node id (nodes in depth-first order, bvh.h). */
 static int
 tree_depth(const struct bvh *bvh, uint32_t id)
@@ -33,10 +34,27 @@ tree_depth(const struct bvh *bvh, uint32_t id)
     int second = tree_depth(bvh, node->index);
     return 1 + (first > second ? first : second);
 }
+#endif
 
 static void
 print_model(const struct bench_model *m)
 {
+    const struct bvh *b = &m->world.bvh;
+#ifdef BVH_WIDTH /* stage 09 on: the binary tree is widened, its nodes freed */
+    printf(
+        "\n%s: %d triangles, load %.3f s, build %.3f s (1 thread), %d nodes of %d children "
+        "(from %d binary), %.1f MiB\n",
+        m->name,
+        m->scene.n_triangles,
+        m->seconds_load,
+        m->seconds_build,
+        b->n_wide,
+        BVH_WIDTH,
+        b->n_nodes,
+        (double)((size_t)b->n_wide * sizeof *b->wide + (size_t)b->n_prims * sizeof *b->prims
+                 + (size_t)b->n_prims * sizeof *b->corners)
+            / (1 << 20));
+#else
     printf(
         "\n%s: %d triangles, load %.3f s, build %.3f s (1 thread), %d nodes, depth %d, "
         "%.1f MiB\n",
@@ -44,11 +62,11 @@ print_model(const struct bench_model *m)
         m->scene.n_triangles,
         m->seconds_load,
         m->seconds_build,
-        m->world.bvh.n_nodes,
-        m->world.bvh.nodes ? tree_depth(&m->world.bvh, 0) : 0,
-        (double)((size_t)m->world.bvh.n_nodes * sizeof *m->world.bvh.nodes
-                 + (size_t)m->world.bvh.n_prims * sizeof *m->world.bvh.prims)
+        b->n_nodes,
+        b->n_nodes > 0 ? tree_depth(b, 0) : 0,
+        (double)((size_t)b->n_nodes * sizeof *b->nodes + (size_t)b->n_prims * sizeof *b->prims)
             / (1 << 20));
+#endif
     printf(
         "  %-8s %8s %8s %12s %12s %10s %10s\n",
         "rays",
@@ -147,8 +165,9 @@ main(int argc, char **argv)
     const char *big = argc > 1 ? argv[1] : BENCH_BIG_MODEL;
     const char *small = argc > 2 ? argv[2] : BENCH_SMALL_MODEL;
     printf(
-        "BVH benchmark: %s precision, BVH_MAX_LEAF %d, %dx%d camera rays, 1 point light, "
+        "BVH benchmark of %s: %s precision, BVH_MAX_LEAF %d, %dx%d camera rays, 1 point light, "
         "best of %d runs\n",
+        STAGE_NAME,
         REAL_NAME,
         BVH_MAX_LEAF,
         BENCH_WIDTH,

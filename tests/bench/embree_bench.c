@@ -221,8 +221,9 @@ main(int argc, char **argv)
     const char *big = argc > 1 ? argv[1] : BENCH_BIG_MODEL;
     const char *small = argc > 2 ? argv[2] : BENCH_SMALL_MODEL;
     printf(
-        "Embree 3 against the stage's BVH: same models and rays, %s precision for ours, "
+        "Embree 3 against %s's BVH: same models and rays, %s precision for ours, "
         "float for Embree; Mrays/s, best of %d runs\n",
+        STAGE_NAME,
         REAL_NAME,
         BENCH_RUNS);
     struct diag err;
