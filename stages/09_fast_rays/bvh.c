@@ -291,7 +291,7 @@ bvh_build(struct bvh *bvh, const struct world *w, struct diag *err)
         bvh->prims[slot] = refs[slot].prim;
     }
     free(refs);
-    if (!bvh_widen(bvh, w)) {
+    if (!bvh_widen(bvh)) {
         diag_set(err, NULL, 0, 0, "out of memory building a BVH over %d primitives", w->n_prims);
         bvh_free(bvh);
         return false;
@@ -304,7 +304,6 @@ bvh_free(struct bvh *bvh)
 {
     free(bvh->nodes);
     free(bvh->wide);
-    free(bvh->corners);
     free(bvh->prims);
     *bvh = (struct bvh){.nodes = NULL};
 }
@@ -379,15 +378,10 @@ meet_boxes(const struct query *q, const struct bvh_wide *node, float entry[BVH_W
 static void
 test_slots(struct query *q, uint32_t first, uint32_t end)
 {
-    const struct bvh *bvh = &q->w->bvh;
     struct hit h;
     for (uint32_t slot = first; slot < end && !(q->any && q->found); slot++) {
         q->tests++;
-        h.prim = bvh->prims[slot];
-        const vec3 *p = bvh->corners[slot].p;
-        bool hit = (unsigned)(h.prim - bvh->first_triangle) < (unsigned)q->w->scene->n_triangles
-                       ? intersect_triangle(p[0], p[1], p[2], q->r, q->t_prim, &h.t, &h.u, &h.v)
-                       : intersect_prim(q->w->scene, h.prim, q->r, q->t_prim, &h);
+        bool hit = intersect_prim(q->w->scene, q->w->bvh.prims[slot], q->r, q->t_prim, &h);
         if (hit && (!q->found || h.t < q->out->t || h.prim < q->out->prim)) {
             *q->out = h;
             q->found = true;

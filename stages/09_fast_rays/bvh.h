@@ -47,10 +47,6 @@ struct bvh {
     int n_nodes;
     struct bvh_wide *wide; /* wide.c: the tree traversed, wide[0] the root */
     int n_wide;
-    struct corners {
-        vec3 p[3];
-    } *corners; /* wide.c: a triangle's corners, by slot (as prims) */
-    int first_triangle; /* the primitive number of the scene's first triangle */
     int *prims; /* primitive numbers: those set aside, then the tree's in leaf order */
     int n_prims; /* 0: no BVH, world_intersect tests every primitive */
     int n_aside; /* prims[0, n_aside): tested by every ray, before the tree */
@@ -61,7 +57,7 @@ bool bvh_build(struct bvh *bvh, const struct world *w, struct diag *err);
 void bvh_free(struct bvh *bvh);
 
 /* wide.c: replace the binary nodes by wide ones; false when out of memory. */
-bool bvh_widen(struct bvh *bvh, const struct world *w);
+bool bvh_widen(struct bvh *bvh);
 
 /* The closest hit along r with t in (0, t_max), or (any) whether there is
  * one: t, u, v and prim, as intersect_prim fills them. */

@@ -67,29 +67,18 @@ widen(struct bvh *bvh, const struct bvh_node *tree, uint32_t id, uint32_t *n_wid
     return at;
 }
 
-/* Replace the binary nodes by wide ones (at most as many: each holds two or more binary nodes),
- * and copy each triangle's corners to its slot: a leaf's triangles are then side by side in memory,
- * not three lookups away (slot, triangle, corner) each. */
+/* Replace the binary nodes by wide ones (at most as many: each holds two or more binary nodes). */
 bool
-bvh_widen(struct bvh *bvh, const struct world *w)
+bvh_widen(struct bvh *bvh)
 {
     if (bvh->n_nodes == 0) { /* everything set aside, or nothing to hold */
         free(bvh->nodes);
         bvh->nodes = NULL;
         return true;
     }
-    const struct scene *s = w->scene;
     bvh->wide = malloc((size_t)bvh->n_nodes * sizeof *bvh->wide);
-    bvh->corners = malloc((size_t)bvh->n_prims * sizeof *bvh->corners);
-    if (!bvh->wide || !bvh->corners) {
+    if (!bvh->wide) {
         return false;
-    }
-    bvh->first_triangle = s->n_spheres + s->n_quads;
-    for (int slot = 0; slot < bvh->n_prims; slot++) {
-        unsigned t = (unsigned)(bvh->prims[slot] - bvh->first_triangle);
-        for (int k = 0; k < 3 && t < (unsigned)s->n_triangles; k++) {
-            bvh->corners[slot].p[k] = s->positions[s->triangles[t].v[k]];
-        }
     }
     uint32_t n_wide = 0;
     widen(bvh, bvh->nodes, 0, &n_wide); /* a root that is a leaf: one node, one child */

@@ -51,8 +51,7 @@ print_model(const struct bench_model *m)
         b->n_wide,
         BVH_WIDTH,
         b->n_nodes,
-        (double)((size_t)b->n_wide * sizeof *b->wide + (size_t)b->n_prims * sizeof *b->prims
-                 + (size_t)b->n_prims * sizeof *b->corners)
+        (double)((size_t)b->n_wide * sizeof *b->wide + (size_t)b->n_prims * sizeof *b->prims)
             / (1 << 20));
 #else
     printf(
