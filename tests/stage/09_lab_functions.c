@@ -329,12 +329,14 @@ TEST(meet_boxes_keeps_every_hit)
                 }
             }
         }
-        int tested = 0; /* rays beside the plane, along it: they meet no box */
+        int tested = 0; /* rays above the plane, rising: they meet no box */
         for (int m = 0; m < 64; m++) {
             vec3 d = stagecheck_random_vec3(&rng);
             d.z = 0;
             d = vec3_normalize(vec3_add(d, vec3_make(0, 0, (real)1e-3))); /* not parallel to a box */
-            ray r = {vec3_add(at, vec3_make(0, 0, (real)(0.5 + 0.01 * m))), d};
+            /* Above the boxes' margin too: 256 ulps of the coordinates (30 units at 1e6 in float). */
+            double above = 1 + 1e-4 * offsets[k] + 0.01 * m;
+            ray r = {vec3_add(at, vec3_make(0, 0, (real)above)), d};
             struct hit h;
             struct stats st = {0};
             wrong += bvh_intersect(&tree, r, REAL_MAX, false, &h, &st);
@@ -342,8 +344,9 @@ TEST(meet_boxes_keeps_every_hit)
         }
         CHECK_MSG(
             tested == 0,
-            "meet_boxes: 64 rays above four flat leaves, which meet none of their boxes, tested %d "
-            "primitives: a box the ray misses is not met",
+            "meet_boxes: 64 rays above four flat leaves %g from the origin, which meet none of their "
+            "boxes, tested %d primitives: a box the ray misses is not met",
+            offsets[k],
             tested);
         CHECK_MSG(
             wrong == 0,
