@@ -15,6 +15,8 @@
 #include <assert.h>
 #include <float.h>
 #include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
 #include <tgmath.h>
 
 #ifdef REAL_IS_FLOAT
@@ -249,7 +251,20 @@ float_below(real x)
         return FLT_MAX;
     }
     float f = (float)x;
-    return (real)f > x ? nextafterf(f, -INFINITY) : f;
+    if (!((real)f > x)) {
+        return f;
+    }
+    /* The float just below f, f > -FLT_MAX here: its bit pattern one step
+     * towards -infinity (as nextafterf, without the call: a ray's set-up in
+     * stage 09 rounds six of these). */
+    if (f == 0) {
+        return -FLT_TRUE_MIN;
+    }
+    uint32_t bits;
+    memcpy(&bits, &f, sizeof bits);
+    bits = f > 0 ? bits - 1 : bits + 1;
+    memcpy(&f, &bits, sizeof f);
+    return f;
 }
 
 /* The smallest float >= x. */
