@@ -237,9 +237,10 @@ build_subtree(
             b = box_add(box_add(b, p.lo), p.hi);
         }
     } else {
-        int axis = widest_centroid_axis(refs + begin, end - begin);
+        int axis = 0;
         int mid = depth < SAH_MAX_DEPTH ? begin + sah_split(refs + begin, end - begin, &axis) : begin;
         if (mid == begin) { /* one bin, or deep: the median along the widest spread */
+            axis = widest_centroid_axis(refs + begin, end - begin);
             mid = begin + (end - begin) / 2;
             select_kth(refs + begin, end - begin, mid - begin, axis);
         }
