@@ -349,6 +349,24 @@ load4(const float *p)
     return v;
 }
 
+/* Bit i set where lane i of m is (all ones): lane i's bit kept, then the lanes OR-ed together in
+ * halves (a loop over the lanes compiles to one instruction a lane and a bit). */
+static inline unsigned
+lane_bits(int4 m)
+{
+#if BVH_WIDTH == 8
+    m &= (int4){1, 2, 4, 8, 16, 32, 64, 128};
+    m |= __builtin_shufflevector(m, m, 4, 5, 6, 7, 0, 1, 2, 3);
+    m |= __builtin_shufflevector(m, m, 2, 3, 0, 1, 6, 7, 4, 5);
+    m |= __builtin_shufflevector(m, m, 1, 0, 3, 2, 5, 4, 7, 6);
+#else
+    m &= (int4){1, 2, 4, 8};
+    m |= __builtin_shufflevector(m, m, 2, 3, 0, 1);
+    m |= __builtin_shufflevector(m, m, 1, 0, 3, 2);
+#endif
+    return (unsigned)m[0];
+}
+
 /* LAB 09: four boxes at once */
 /* The slab test of a node's four boxes at once: which the ray meets for some t in [0, t_box], and
  * where it enters them (a bit per child, and entry[]). */
@@ -364,13 +382,8 @@ meet_boxes(const struct query *q, const struct bvh_wide *node, float entry[BVH_W
         t_near = select4(enter > t_near, enter, t_near);
         t_far = select4(leave < t_far, leave, t_far);
     }
-    int4 met = t_near <= t_far * EXIT_SCALE;
     memcpy(entry, &t_near, sizeof t_near);
-    unsigned mask = 0;
-    for (int i = 0; i < BVH_WIDTH; i++) {
-        mask |= (unsigned)(met[i] & 1) << i;
-    }
-    return mask;
+    return lane_bits(t_near <= t_far * EXIT_SCALE);
 }
 
 /* END LAB */
@@ -446,8 +459,17 @@ traverse(struct query *q)
 bool
 bvh_intersect(const struct world *w, ray r, real t_max, bool any, struct hit *out, struct stats *st)
 {
-    struct query q = {w, r, .any = any, .t_box = t_max, .t_prim = t_max, .out = out};
+    struct query q; /* every member set below: an initializer would clear its 300 bytes first */
+    q.w = w;
+    q.r = r;
+    q.any = any;
+    q.found = false;
+    q.t_box = t_max;
+    q.t_prim = t_max;
     q.t_box4 = (float4){0} + float_above(t_max);
+    q.out = out;
+    q.visits = 0;
+    q.tests = 0;
     for (int i = 0; i < 3; i++) {
         real d = vec3_axis(r.d, i);
         real o = vec3_axis(r.o, i);

@@ -17,7 +17,8 @@
  *    no traversal order): every hit brute force finds, for rays through
  *    the triangles' corners and edges (which lie on the leaves' boxes),
  *    along the axes and not, and far from the origin (1e3, 1e6); a ray
- *    that misses every box tests no primitive.
+ *    that misses every box, or whose line crosses one only behind its
+ *    origin (t < 0), tests no primitive.
  *  - traverse: on random soups of 3,000 and 9,000 primitives, the closest
  *    hit and any-hit answer brute force's; at least the nodes whose boxes
  *    the ray meets before its hit are visited; the nearest child first: a
@@ -333,10 +334,19 @@ TEST(meet_boxes_keeps_every_hit)
         for (int m = 0; m < 64; m++) {
             vec3 d = stagecheck_random_vec3(&rng);
             d.z = 0;
-            d = vec3_normalize(vec3_add(d, vec3_make(0, 0, (real)1e-3))); /* not parallel to a box */
-            /* Above the boxes' margin too: 256 ulps of the coordinates (30 units at 1e6 in float). */
+            /* Above the boxes' margin: 256 ulps of the coordinates (30 units at 1e6 in float). */
             double above = 1 + 1e-4 * offsets[k] + 0.01 * m;
-            ray r = {vec3_add(at, vec3_make(0, 0, (real)above)), d};
+            vec3 o = vec3_add(at, vec3_make(0, 0, (real)above));
+            vec3 up = vec3_make(0, 0, 1);
+            if (m % 2 == 0) { /* nearly level (not parallel to a box): the line misses them */
+                d = vec3_normalize(vec3_add(d, vec3_scale(up, (real)1e-3)));
+            } else { /* up from above a leaf: the line crosses its box, behind the origin */
+                real x = m & 2 ? (real)1.1 : (real)-0.9;
+                real y = m & 4 ? (real)1.1 : (real)-0.9;
+                o = vec3_add(o, vec3_make(x, y, 0));
+                d = vec3_normalize(vec3_add(vec3_scale(d, (real)(0.05 / above)), up));
+            }
+            ray r = {o, d};
             struct hit h;
             struct stats st = {0};
             wrong += bvh_intersect(&tree, r, REAL_MAX, false, &h, &st);
@@ -345,7 +355,8 @@ TEST(meet_boxes_keeps_every_hit)
         CHECK_MSG(
             tested == 0,
             "meet_boxes: 64 rays above four flat leaves %g from the origin, which meet none of their "
-            "boxes, tested %d primitives: a box the ray misses is not met",
+            "boxes for t >= 0, tested %d primitives: a box the ray misses, or meets only behind its "
+            "origin (t < 0), is not met",
             offsets[k],
             tested);
         CHECK_MSG(
