@@ -7,11 +7,13 @@
  * shadow rays, the shadow rays starting from our hits), gives Embree the
  * same triangles (as float, the only precision it takes), and traces the
  * rays with its single-ray API, rtcIntersect1 and rtcOccluded1, on 1 and 2
- * threads.  Prints both builds' times, both throughputs, and ours as a
- * fraction of Embree's.  Embree's BVH is a SAH-built 4- or 8-wide tree
- * traversed with SIMD: it is here to show how far a median split with a
- * binary tree in double precision is from production, not to be matched.
- * Built only where Debian's libembree-dev is installed.
+ * threads, in ROUNDS interleaved rounds.  Prints both builds' times, both
+ * throughputs, and ours as a fraction of Embree's: the median of the rounds
+ * and its range.  Embree's BVH is a SAH-built 4- or 8-wide tree (8 where the
+ * processor has AVX) traversed with SIMD, its triangles tested four at once
+ * in float: production's speed, which stage 09 is measured against (stage
+ * 05, STAGE=05_bvh, shows a median split's binary tree in double).  Built
+ * only where Debian's libembree-dev is installed.
  */
 #include <embree3/rtcore.h>
 #include <float.h>
@@ -20,6 +22,7 @@
 #include "benchlib.h"
 
 #define SPHERE_BANDS 500
+#define ROUNDS 3 /* interleaved rounds: odd, for a median */
 
 struct embree {
     RTCDevice device;
@@ -139,6 +142,26 @@ embree_any(const void *ctx, ray r, real t_max, struct stats *st)
 }
 
 /* One kind of ray through both, on 1 and 2 threads. */
+/* The median of v[0, n) (n odd), and its least and greatest. */
+static void
+median_range(const double *v, int n, double *median, double *least, double *most)
+{
+    double sorted[ROUNDS];
+    for (int i = 0; i < n; i++) { /* insertion sort: n is ROUNDS */
+        int j = i;
+        for (; j > 0 && sorted[j - 1] > v[i]; j--) {
+            sorted[j] = sorted[j - 1];
+        }
+        sorted[j] = v[i];
+    }
+    *median = sorted[n / 2];
+    *least = sorted[0];
+    *most = sorted[n - 1];
+}
+
+/* ROUNDS rounds, each timing ours then Embree on 1 and on 2 threads; a row: the medians of the
+ * Mrays/s, and the median of the rounds' ratios with their range (a ratio is taken within one
+ * round: the machine's load drifts between rounds more than within one). */
 static bool
 compare(
     const char *what,
@@ -148,26 +171,39 @@ compare(
     bench_trace_fn theirs,
     const struct embree *e)
 {
-    struct bench_result r[4];
-    for (int threads = 1; threads <= 2; threads++) {
-        int k = 2 * (threads - 1);
-        if (!bench_time(b, 1, threads, BENCH_RUNS, ours, model, &r[k])
-            || !bench_time(b, 1, threads, BENCH_RUNS, theirs, e, &r[k + 1])) {
-            return false;
+    double mrays[2][2][ROUNDS]; /* [threads - 1][0 ours, 1 Embree][round] */
+    double ratio[2][ROUNDS];
+    uint64_t hits[2] = {0, 0};
+    for (int round = 0; round < ROUNDS; round++) {
+        for (int t = 0; t < 2; t++) {
+            struct bench_result r[2];
+            if (!bench_time(b, 1, t + 1, BENCH_RUNS, ours, model, &r[0])
+                || !bench_time(b, 1, t + 1, BENCH_RUNS, theirs, e, &r[1])) {
+                return false;
+            }
+            for (int k = 0; k < 2; k++) {
+                mrays[t][k][round] = bench_mrays(&r[k]);
+                hits[k] = r[k].hits;
+            }
+            ratio[t][round] = mrays[t][0][round] / mrays[t][1][round];
         }
     }
     printf(
-        "  %-7s %7zu %8llu %8llu %9.2f %9.2f %9.2f %9.2f %7.0f%% %6.0f%%\n",
+        "  %-7s %7zu %8llu %8llu",
         what,
         b->n,
-        (unsigned long long)r[0].hits,
-        (unsigned long long)r[1].hits,
-        bench_mrays(&r[0]),
-        bench_mrays(&r[1]),
-        bench_mrays(&r[2]),
-        bench_mrays(&r[3]),
-        100 * bench_mrays(&r[0]) / bench_mrays(&r[1]),
-        100 * bench_mrays(&r[2]) / bench_mrays(&r[3]));
+        (unsigned long long)hits[0],
+        (unsigned long long)hits[1]);
+    for (int t = 0; t < 2; t++) {
+        double m[3];
+        double lo;
+        double hi;
+        median_range(mrays[t][0], ROUNDS, &m[0], &lo, &hi);
+        median_range(mrays[t][1], ROUNDS, &m[1], &lo, &hi);
+        median_range(ratio[t], ROUNDS, &m[2], &lo, &hi);
+        printf(" %9.2f %9.2f %6.0f%% (%2.0f-%2.0f%%)", m[0], m[1], 100 * m[2], 100 * lo, 100 * hi);
+    }
+    printf("\n");
     return true;
 }
 
@@ -192,17 +228,17 @@ bench_against_embree(struct bench_model *m)
             one.seconds_build,
             two.seconds_build);
         printf(
-            "  %-7s %7s %8s %8s %9s %9s %9s %9s %8s %7s\n",
+            "  %-7s %7s %8s %8s %9s %9s %17s %9s %9s %17s\n",
             "rays",
             "count",
             "hits",
             "Embree",
             "ours 1t",
             "Embree",
+            "ours/E 1t",
             "ours 2t",
             "Embree",
-            "ours/E 1t",
-            "2t");
+            "ours/E 2t");
         ok = compare("camera", &camera, bench_bvh_closest, m, embree_closest, &one)
              && compare("shadow", &shadow, bench_bvh_any, m, embree_any, &one);
     } else {
@@ -222,9 +258,11 @@ main(int argc, char **argv)
     const char *small = argc > 2 ? argv[2] : BENCH_SMALL_MODEL;
     printf(
         "Embree 3 against %s's BVH: same models and rays, %s precision for ours, "
-        "float for Embree; Mrays/s, best of %d runs\n",
+        "float for Embree.\nMrays/s: the median of %d interleaved rounds, each the best of %d "
+        "runs; ours/E: the median of the rounds' ratios (their range)\n",
         STAGE_NAME,
         REAL_NAME,
+        ROUNDS,
         BENCH_RUNS);
     struct diag err;
     struct bench_model m;
