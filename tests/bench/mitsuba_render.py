@@ -3,9 +3,10 @@
 
     mitsuba_render.py VARIANT SCENE SPP SEED THREADS OUT.pfm [BATCHES]
 
-Translates the statements the reference scenes use (camera, image,
-material diffuse/mirror/glass, quad, sphere, area_light, point_light,
-triangle) into a Mitsuba scene as tests/reference/SCENES.md defines it
+Translates the statements the bench scenes use (camera with its near
+plane, image, material diffuse/mirror/glass, quad, sphere, area_light,
+point_light, sphere_light, triangle, mesh: a .glb's nodes with their
+transforms and materials, then the statement's own) into a Mitsuba scene as tests/reference/SCENES.md defines it
 (Mitsuba's `path` integrator, unbounded depth, Russian roulette from depth
 5, the independent sampler, a box filter of one pixel, two-sided surfaces,
 one-sided black area lights), renders it once unmeasured (the LLVM variant
@@ -75,17 +76,26 @@ def material(words):
     fail("material kind %s is not translated" % kind)
 
 
-def triangle_mesh(v, bsdf):
-    """A Mitsuba mesh of the triangles (v[3i], v[3i+1], v[3i+2]), flat-shaded."""
+def triangle_mesh(v, bsdf, normals=None, emitter=None):
+    """A Mitsuba mesh of the triangles (v[3i], v[3i+1], v[3i+2]): smooth-shaded
+    by the corners' normals where given (as the stages shade a mesh with
+    normals), flat otherwise; an area emitter on the front (counter-
+    clockwise) side when given."""
     v = np.asarray(v, dtype=np.float32)
-    mesh = mi.Mesh("triangles", len(v), len(v) // 3)
+    props = mi.Properties()
+    props["bsdf"] = mi.load_dict(bsdf)
+    if emitter is not None:  # a shape's emitter is given when it is made
+        props["emitter"] = mi.load_dict({"type": "area", "radiance": rgb(emitter)})
+    mesh = mi.Mesh("triangles", len(v), len(v) // 3, props, has_vertex_normals=normals is not None)
     params = mi.traverse(mesh)
     # The buffers' own types, built from flat arrays: the same code serves
     # the scalar and the LLVM variants.
     params["vertex_positions"] = type(params["vertex_positions"])(v.ravel())
     params["faces"] = type(params["faces"])(np.arange(len(v), dtype=np.uint32))
+    if normals is not None:
+        n = np.asarray(normals, dtype=np.float32)
+        params["vertex_normals"] = type(params["vertex_normals"])(n.ravel())
     params.update()
-    mesh.set_bsdf(mi.load_dict(bsdf))
     return mesh
 
 
@@ -99,48 +109,152 @@ def rotation(axis, degrees):
     return np.identity(3) + np.sin(a) * cross + (1 - np.cos(a)) * cross @ cross
 
 
-def glb_triangles(words, scene_path):
-    """The corners of the triangles of a `mesh file F ... [scale S]
-    [rotate AX AY AZ DEG] [translate X Y Z]` statement whose .glb holds one
-    mesh at its node's identity transform (the bunny of scenes/models):
-    scaled, then rotated, then moved (docs/scene-format.md)."""
+def numbers_after(words, key):
+    """The numbers that follow `key` on a statement, up to the next word."""
+    out = []
+    for w in words[words.index(key) + 1:]:
+        try:
+            out.append(float(w))
+        except ValueError:
+            break
+    return out
+
+
+def statement_transform(words):
+    """The 4x4 matrix of a mesh statement's scale, then rotate, then
+    translate (docs/scene-format.md)."""
+    m = np.identity(4)
+    if "scale" in words:
+        sc = numbers_after(words, "scale")
+        m = np.diag((sc * 3 if len(sc) == 1 else sc[:3]) + [1.0]) @ m
+    if "rotate" in words:
+        r = floats(words, "rotate", 4)
+        rot = np.identity(4)
+        rot[:3, :3] = rotation(r[:3], r[3])
+        m = rot @ m
+    if "translate" in words:
+        t = np.identity(4)
+        t[:3, 3] = floats(words, "translate")
+        m = t @ m
+    return m
+
+
+def node_matrix(node):
+    """A glTF node's local transform: its matrix (column-major), or T R S
+    (rotation a unit quaternion x y z w)."""
+    if "matrix" in node:
+        return np.array(node["matrix"], dtype=np.float64).reshape(4, 4).T
+    t = np.identity(4)
+    t[:3, 3] = node.get("translation", [0, 0, 0])
+    x, y, z, w = node.get("rotation", [0, 0, 0, 1])
+    r = np.identity(4)
+    r[:3, :3] = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                 [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                 [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
+    sc = np.diag(list(node.get("scale", [1, 1, 1])) + [1.0])
+    return t @ r @ sc
+
+
+def gltf_material(gltf, index):
+    """(bsdf, emitted radiance or None, both sides emit) of a glTF material
+    as the stages map it (docs/scene-format.md, "Materials from the file");
+    a texture is not translated (the stages use its mean colour)."""
+    if index is None:
+        return {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": rgb([1, 1, 1])}}, None, False
+    m = gltf["materials"][index]
+    pbr = m.get("pbrMetallicRoughness", {})
+    ext = m.get("extensions", {})
+    for slot in ("baseColorTexture", "emissiveTexture"):
+        if slot in pbr or slot in m:
+            fail("material '%s': %s is not translated" % (m.get("name", index), slot))
+    base = pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]
+    strength = ext.get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
+    emit = [c * strength for c in m.get("emissiveFactor", [0, 0, 0])]
+    if max(emit) > 0:
+        black = {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": rgb([0, 0, 0])}}
+        return black, emit, bool(m.get("doubleSided", False))
+    transmission = ext.get("KHR_materials_transmission", {}).get("transmissionFactor", 0)
+    if transmission > 0:
+        ior = ext.get("KHR_materials_ior", {}).get("ior", 1.5)
+        return {"type": "dielectric", "int_ior": ior, "ext_ior": 1.0}, None, False
+    if pbr.get("metallicFactor", 1.0) >= 0.5 and pbr.get("roughnessFactor", 1.0) < 0.5:
+        return {"type": "twosided", "bsdf": {"type": "conductor", "material": "none",
+                                             "specular_reflectance": rgb(base)}}, None, False
+    return {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": rgb(base)}}, None, False
+
+
+def gltf_meshes(words, scene_path, materials):
+    """The Mitsuba meshes of a `mesh file F [material M] [scale ...] [rotate
+    ...] [translate ...]` statement: every primitive of every node of the
+    file's scene, through the nodes' transforms (matrix or T R S, parents
+    first), then the statement's; the file's materials unless M is given.
+    A .glb file only."""
     import json
     import os
     import struct
     name = word(words, "file").strip('"')
     if not os.path.isabs(name):
         name = os.path.join(os.path.dirname(scene_path), name)
+    if not name.endswith(".glb"):
+        fail("%s: only .glb files are translated" % name)
     data = open(name, "rb").read()
     jlen = struct.unpack("<I", data[12:16])[0]
     gltf = json.loads(data[20:20 + jlen])
     blob = data[20 + jlen + 8:]
-    if len(gltf["nodes"]) != 1 or set(gltf["nodes"][0]) - {"mesh", "name"}:
-        fail("%s: only one untransformed mesh node is translated" % name)
 
     def accessor(i, dtype, width):
         a = gltf["accessors"][i]
         view = gltf["bufferViews"][a["bufferView"]]
+        if view.get("byteStride", 0) not in (0, np.dtype(dtype).itemsize * width):
+            fail("%s: interleaved buffers are not translated" % name)
         start = view.get("byteOffset", 0) + a.get("byteOffset", 0)
         return np.frombuffer(blob, dtype=dtype, count=a["count"] * width,
                              offset=start).reshape(-1, width)
 
-    tris = []
-    for prim in gltf["meshes"][gltf["nodes"][0]["mesh"]]["primitives"]:
-        pos = accessor(prim["attributes"]["POSITION"], "<f4", 3).astype(np.float64)
-        kind = {5121: "<u1", 5123: "<u2", 5125: "<u4"}[
-            gltf["accessors"][prim["indices"]]["componentType"]]
-        tris.append(pos[accessor(prim["indices"], kind, 1).ravel()])
-    v = np.concatenate(tris)
-    if "matrix" in words:
-        fail("mesh: only scale, rotate and translate are translated")
-    if "scale" in words:
-        v = v * float(word(words, "scale"))
-    if "rotate" in words:
-        r = floats(words, "rotate", 4)
-        v = v @ rotation(r[:3], r[3]).T
-    if "translate" in words:
-        v = v + np.array(floats(words, "translate"))
-    return v
+    outer = statement_transform(words)
+    meshes = []
+
+    def visit(index, parent):
+        node = gltf["nodes"][index]
+        m = parent @ node_matrix(node)
+        for child in node.get("children", []):
+            visit(child, m)
+        if "mesh" not in node:
+            return
+        linear = m[:3, :3]
+        mirrored = np.linalg.det(linear) < 0  # glTF: the front face is then clockwise
+        for prim in gltf["meshes"][node["mesh"]]["primitives"]:
+            if prim.get("mode", 4) != 4:
+                fail("%s: only triangle primitives are translated" % name)
+            pos = accessor(prim["attributes"]["POSITION"], "<f4", 3).astype(np.float64)
+            if "indices" in prim:
+                kind = {5121: "<u1", 5123: "<u2", 5125: "<u4"}[
+                    gltf["accessors"][prim["indices"]]["componentType"]]
+                idx = accessor(prim["indices"], kind, 1).ravel().astype(np.int64)
+            else:
+                idx = np.arange(len(pos))
+            idx = idx.reshape(-1, 3)
+            if mirrored:
+                idx = idx[:, [0, 2, 1]]
+            idx = idx.ravel()
+            v = pos[idx] @ linear.T + m[:3, 3]
+            normals = None
+            if "NORMAL" in prim["attributes"]:
+                n = accessor(prim["attributes"]["NORMAL"], "<f4", 3).astype(np.float64)[idx]
+                n = n @ np.linalg.inv(linear)  # the inverse transpose, applied to rows
+                normals = n / np.linalg.norm(n, axis=1, keepdims=True)
+            if "material" in words:
+                bsdf, emit, both = materials[word(words, "material")], None, False
+            else:
+                bsdf, emit, both = gltf_material(gltf, prim.get("material"))
+            meshes.append(triangle_mesh(v, bsdf, normals, emit))
+            if both:  # a one-sided emitter a side, the copy turned over
+                turned = v.reshape(-1, 3, 3)[:, [0, 2, 1]].reshape(-1, 3)
+                meshes.append(triangle_mesh(turned, bsdf, None, emit))
+
+    for root in gltf["scenes"][gltf.get("scene", 0)]["nodes"]:
+        visit(root, outer)
+    return meshes
 
 
 def load(path, spp, seed):
@@ -153,8 +267,6 @@ def load(path, spp, seed):
     n = 0
     tri_v = []
     tri_mat = None
-    mesh_v = []
-    mesh_mat = []
     with open(path) as f:
         for line in f:
             words = line.split("#", 1)[0].split()
@@ -196,23 +308,31 @@ def load(path, spp, seed):
                     fail("triangles of more than one material are not translated")
                 tri_mat = m
             elif st == "mesh":
-                mesh_v.append(glb_triangles(words, path))
-                scene["mesh%d" % n] = None
-                mesh_mat.append((n, word(words, "material")))
+                for k, mesh in enumerate(gltf_meshes(words, path, materials)):
+                    scene["mesh%d_%d" % (n, k)] = mesh
+            elif st == "sphere_light":
+                # Black on both sides; radiance L leaves its surface outward
+                # (docs/scene-format.md): Mitsuba's sphere emits outward.
+                scene["s%d" % n] = {
+                    "type": "sphere", "center": floats(words, "center"),
+                    "radius": float(word(words, "radius")),
+                    "bsdf": {"type": "diffuse", "reflectance": rgb([0, 0, 0])},
+                    "emitter": {"type": "area", "radiance": rgb(floats(words, "radiance"))}}
             elif st in ("ambient", "background"):
                 continue
             else:
                 fail("%s: statement %s is not translated" % (path, st))
     if camera is None:
         fail("no camera")
-    for (key, mat), v in zip(mesh_mat, mesh_v):
-        scene["mesh%d" % key] = triangle_mesh(v, materials[mat])
     if tri_v:
         scene["triangles"] = triangle_mesh(np.array(tri_v).reshape(-1, 3), materials[tri_mat])
     scene["camera"] = {
         "type": "perspective",
         "fov": float(word(camera, "fov")),
         "fov_axis": "y",
+        # The stages' near plane is measured along the view direction, as
+        # Mitsuba's near_clip is.
+        "near_clip": float(word(camera, "near")) if "near" in camera else 1e-2,
         "to_world": mi.ScalarTransform4f().look_at(origin=floats(camera, "origin"),
                                                    target=floats(camera, "target"),
                                                    up=floats(camera, "up")),
