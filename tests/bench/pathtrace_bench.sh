@@ -330,8 +330,8 @@ for scene in $scenes; do
     case $own in "$root"/tests/reference/*) mine= ;; esac
     if [ -n "$mine" ] && [ -f "$mine" ] && [ -f "$theirs" ]; then
         mr=$(mean_ratio "$theirs" "$mine")
-        echo "converged images: Mitsuba's mean brightness is $(awk -v r="$mr" 'BEGIN {
-            printf "%+.1f%%", 100 * (r - 1) }') of the stage's$(awk -v r="$mr" 'BEGIN {
+        echo "converged images: Mitsuba's mean brightness differs from the stage's by $(awk -v r="$mr" 'BEGIN {
+            printf "%+.1f%%", 100 * (r - 1) }')$(awk -v r="$mr" 'BEGIN {
             if (r > 1.02 || r < 0.98) printf ": they disagree (over 2%%), so the times above are to different answers" }')"
     fi
     if [ "$scene" = cornell_diffuse_area ]; then
