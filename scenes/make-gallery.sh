@@ -11,7 +11,7 @@
 # (its header's "First rendered correctly by NN_name"; for a scene with a
 # mesh, 05_bvh if that stage is earlier, since the stages before the BVH
 # test every triangle for every ray: correct, but minutes to hours), and one
-# from the last stage (today 08_variance_reduction).  Images go to
+# from the last stage (today 09_fast_rays).  Images go to
 # scenes/gallery/NAME_NN.png, times are the
 # renders' own statistics (--stats: seconds_total, wall clock with loading
 # and the BVH build).  Every render uses 2 threads (-t 2), the CI machine's
