@@ -69,7 +69,7 @@ for f in grade.sh grade.awk lablib.sh grade-pages.sh; do
     cp "$LAB_DIR/$f" "$dest/tools/tests/lab/"
 done
 cp "$root/tests/harness/with-timeout.sh" "$dest/tools/tests/harness/"
-cp "$COURSE_DIR/results.awk" "$dest/tools/tests/course/"
+cp "$COURSE_DIR/results.awk" "$COURSE_DIR/relocate-deps.sh" "$dest/tools/tests/course/"
 if [ -f "$root/tests/course/controls/$stage" ]; then
     cp "$root/tests/course/controls/$stage" "$dest/controls"
 else

@@ -33,6 +33,13 @@
 #   timeout        with-timeout.sh's shell watchdog (WITH_TIMEOUT=posix, as
 #                  without timeout(1)): 124 for a command past its limit,
 #                  the command's own status otherwise, nothing left behind
+#   relocated-deps a tiny project built with -MMD (its objects and .d files
+#                  under build/, named by absolute path, as the project's
+#                  are) and copied elsewhere, as run_autograder copies the
+#                  image's handout: with relocate-deps.sh, a header changed
+#                  in the copy recompiles the object that includes it; the
+#                  same copy without it keeps the stale object (the check
+#                  that the fixture shows the bug)
 # Prints one line per check and "N passed, N failed, N skipped".
 set -u
 COURSE_DIR=$(cd "$(dirname "$0")" && pwd)
@@ -222,6 +229,32 @@ if [ "$st" -eq 124 ] && [ "$st2" -eq 3 ] && [ "$st3" -eq 0 ] && [ -z "$(ls -A "$
     ok "timeout: the shell watchdog stops a command at its limit (124), else passes its status on"
 else
     fail timeout "statuses $st $st2 $st3 (expected 124 3 0); left: $(ls -A "$T/tmp")"
+fi
+
+# ---- relocated-deps -------------------------------------------------------------------
+# value_after_header_change RELOCATE: build the project in $T/deps/image,
+# copy it (cp -Rp), set the copy's header to 2, relocate its .d files when
+# RELOCATE is 1, make the copy; prints what the copy's program prints.
+value_after_header_change() {
+    rm -rf "$T/deps"
+    mkdir -p "$T/deps/image"
+    img=$(cd "$T/deps/image" && pwd -P)
+    printf '#define VALUE 1\n' >"$img/value.h"
+    printf '#include <stdio.h>\n#include "value.h"\nint main(void) { printf("%%d\\n", VALUE); return 0; }\n' >"$img/main.c"
+    printf 'ROOT := $(abspath .)\nbuild/main: $(ROOT)/build/main.o\n\t$(CC) -o $@ $<\n$(ROOT)/build/%%.o: %%.c\n\tmkdir -p $(@D) && $(CC) -MMD -MP -I$(ROOT) -c -o $@ $<\n-include $(ROOT)/build/main.d\n' >"$img/Makefile"
+    make -s -C "$img" >/dev/null 2>&1 || return 1
+    sleep 1 # the copy's header must be newer than the image's object
+    cp -Rp "$img" "$T/deps/copy"
+    printf '#define VALUE 2\n' >"$T/deps/copy/value.h"
+    if [ "$1" = 1 ]; then sh "$COURSE_DIR/relocate-deps.sh" "$img" "$T/deps/copy" || return 1; fi
+    make -s -C "$T/deps/copy" >/dev/null 2>&1 && "$T/deps/copy/build/main"
+}
+with=$(value_after_header_change 1)
+without=$(value_after_header_change 0)
+if [ "$with" = 2 ] && [ "$without" = 1 ]; then
+    ok "relocated-deps: the copy's changed header recompiles its includer (stale without relocate-deps.sh)"
+else
+    fail relocated-deps "with relocate-deps.sh the copy printed '$with' (want 2), without '$without' (want 1: the fixture no longer shows the bug)"
 fi
 
 finish

@@ -12,9 +12,16 @@
 #             includes a changed file compiles again (as after make test)
 #   loaded    a third, with N busy loops beside it (default 2: one per
 #             processor of the machines this project is measured on)
-# with the processor seconds (user + sys of make grade and everything it
-# ran) of each, and each run's score.  The three scores must be equal: a
-# score that depends on the machine's load is a bug (exit 1).
+#   submitted the autograder's grade of one submission, as Gradescope and
+#             grade-class run it (tests/course/run_autograder.in): the
+#             image is the untouched handout built with its test programs
+#             once (setup.sh; not counted), and each submission's
+#             stages/NN_name/ (here the solution's) goes into a copy of it,
+#             so only what the submission's files reach compiles again
+# with the processor seconds (user + sys of make grade, or run_autograder,
+# and everything it ran) of each, and each run's score.  The four scores
+# must be equal: a score that depends on the machine's load is a bug
+# (exit 1).
 # Exit status: 0 measured, 1 a grade failed or the scores differ, 2 usage.
 set -eu
 
@@ -65,9 +72,35 @@ timed_grade() {
          END { printf " %s\n", s == "" ? "none" : s }' "$2"
 }
 
+# timed_submission STAGE SOLUTION LOG: the autograder of STAGE (autograder.sh)
+# with its image built as setup.sh builds it, then run_autograder on the
+# stage of the SOLUTION handout; prints "SECONDS SCORE" as timed_grade does.
+timed_submission() {
+    ag=$work/ag.$1
+    # AUTOGRADER_ROOT=$ag: source/ (the autograder, its handout built where
+    # it lies, as Gradescope's setup.sh builds it), submission/, results/.
+    "$LAB_DIR/../course/autograder.sh" --root "$root" "$1" "$ag/out" >"$3.setup" 2>&1 &&
+        mv "$ag/out/autograder" "$ag/source" &&
+        plain_make -C "$ag/source/handout" -j2 tests >>"$3.setup" 2>&1 ||
+        die "could not build the autograder of $1 (see $3.setup)"
+    mkdir -p "$ag/submission/stages" "$ag/results"
+    cp -R "$2/stages/$1" "$ag/submission/stages/$1"
+    rm -rf "$ag/submission/stages/$1/build"
+    sh -c 'AUTOGRADER_ROOT=$1 sh "$1/source/run_autograder" >"$2" 2>&1; s=$?; times >"$2.times"; exit $s' \
+        sh "$ag" "$3" </dev/null || :
+    awk 'NR == 2 {
+             t = 0
+             for (i = 1; i <= 2; i++) { split($i, p, "m"); sub(/s$/, "", p[2]); t += 60 * p[1] + p[2] }
+             printf "%.1f", t
+         }' "$3.times"
+    awk '/^GRADE / { for (i = 2; i <= NF; i++) if ($i ~ /^score=/) s = substr($i, 7) }
+         END { printf " %s\n", s == "" ? "none" : s }' "$3"
+    rm -rf "$ag"
+}
+
 status=0
-echo "| lab | first grade (processor s) | again | loaded ($load busy loops) | scores |"
-echo "|---|--:|--:|--:|---|"
+echo "| lab | first grade (processor s) | again | loaded ($load busy loops) | submitted (autograder) | scores |"
+echo "|---|--:|--:|--:|--:|---|"
 for nn in $labs; do
     stage=$(resolve_stage "$root" "$nn") || exit 2
     dir=$work/$nn
@@ -88,13 +121,15 @@ for nn in $labs; do
     set -- $(timed_grade "$dir" "$work/$nn.loaded.log")
     stop_load
     loaded=$1 s3=$2
-    verdict="$s1%, $s2%, $s3%"
-    if [ "$s1" = none ] || [ "$s1" != "$s2" ] || [ "$s1" != "$s3" ]; then
+    set -- $(timed_submission "$stage" "$dir" "$work/$nn.submitted.log")
+    submitted=$1 s4=$2
+    verdict="$s1%, $s2%, $s3%, $s4%"
+    if [ "$s1" = none ] || [ "$s1" != "$s2" ] || [ "$s1" != "$s3" ] || [ "$s1" != "$s4" ]; then
         verdict="$verdict: DIFFER"
         status=1
-        tail -n 5 "$work/$nn.first.log" "$work/$nn.loaded.log" >&2
+        tail -n 5 "$work/$nn.first.log" "$work/$nn.loaded.log" "$work/$nn.submitted.log" >&2
     fi
-    echo "| $stage | $first | $again | $loaded | $verdict |"
+    echo "| $stage | $first | $again | $loaded | $submitted | $verdict |"
     rm -rf "$dir"
 done
 exit $status

@@ -1,0 +1,35 @@
+#!/bin/sh
+# relocate-deps.sh FROM TO - point the dependency files (*.d, which the
+# compiler writes with -MMD) under TO/build at TO.
+#
+# A handout built at FROM and copied to TO (cp -Rp, as run_autograder copies
+# the image's handout for each submission) still names FROM in its .d files,
+# the objects' own paths included: make then finds no rule for TO's objects
+# but the pattern rule's, so an object depends on its .c file and on no
+# header, and a header the submission changed (lab 08's lowdisc.h, which
+# the test programs include) recompiles nothing.  FROM is replaced where it
+# starts a path (FROM/), as typed and as its physical path (pwd -P), by TO's
+# physical path; the replacement is literal (awk's index, no regular
+# expression).  Exit status: 0 done (also when there is no build), 1 error,
+# 2 usage.
+set -eu
+[ $# -eq 2 ] || { echo "usage: relocate-deps.sh FROM TO" >&2; exit 2; }
+[ -d "$2" ] || { echo "relocate-deps.sh: no directory $2" >&2; exit 1; }
+to=$(cd "$2" && pwd -P)
+from_physical=$(cd "$1" 2>/dev/null && pwd -P || echo "$1")
+[ -d "$to/build" ] || exit 0
+find "$to/build" -name '*.d' -type f | while IFS= read -r d; do
+    FROM_A="$1/" FROM_B="$from_physical/" TO="$to/" awk '
+        function swap(s, from, to,    out, i) {
+            out = ""
+            while ((i = index(s, from)) > 0) {
+                out = out substr(s, 1, i - 1) to
+                s = substr(s, i + length(from))
+            }
+            return out s
+        }
+        { line = swap($0, ENVIRON["FROM_A"], ENVIRON["TO"])
+          if (ENVIRON["FROM_B"] != ENVIRON["FROM_A"]) line = swap(line, ENVIRON["FROM_B"], ENVIRON["TO"])
+          print line }' "$d" >"$d.tmp"
+    mv "$d.tmp" "$d"
+done
