@@ -9,27 +9,21 @@
 # header, and a header the submission changed (lab 08's lowdisc.h, which
 # the test programs include) recompiles nothing.  FROM is replaced where it
 # starts a path (FROM/), as typed and as its physical path (pwd -P), by TO's
-# physical path; the replacement is literal (awk's index, no regular
-# expression).  Exit status: 0 done (also when there is no build), 1 error,
+# physical path; the replacement is literal (lablib.sh's AWK_REPLACE).  Exit status: 0 done (also when there is no build), 1 error,
 # 2 usage.
 set -eu
+PROG=relocate-deps.sh
+LAB_DIR=$(cd "$(dirname "$0")/../lab" && pwd) # the autograder's tools keep this layout
+. "$LAB_DIR/lablib.sh"
 [ $# -eq 2 ] || { echo "usage: relocate-deps.sh FROM TO" >&2; exit 2; }
 [ -d "$2" ] || { echo "relocate-deps.sh: no directory $2" >&2; exit 1; }
 to=$(cd "$2" && pwd -P)
 from_physical=$(cd "$1" 2>/dev/null && pwd -P || echo "$1")
 [ -d "$to/build" ] || exit 0
 find "$to/build" -name '*.d' -type f | while IFS= read -r d; do
-    FROM_A="$1/" FROM_B="$from_physical/" TO="$to/" awk '
-        function swap(s, from, to,    out, i) {
-            out = ""
-            while ((i = index(s, from)) > 0) {
-                out = out substr(s, 1, i - 1) to
-                s = substr(s, i + length(from))
-            }
-            return out s
-        }
-        { line = swap($0, ENVIRON["FROM_A"], ENVIRON["TO"])
-          if (ENVIRON["FROM_B"] != ENVIRON["FROM_A"]) line = swap(line, ENVIRON["FROM_B"], ENVIRON["TO"])
+    FROM_A="$1/" FROM_B="$from_physical/" TO="$to/" awk "$AWK_REPLACE"'
+        { line = replace($0, ENVIRON["FROM_A"], ENVIRON["TO"])
+          if (ENVIRON["FROM_B"] != ENVIRON["FROM_A"]) line = replace(line, ENVIRON["FROM_B"], ENVIRON["TO"])
           print line }' "$d" >"$d.tmp"
     mv "$d.tmp" "$d"
 done

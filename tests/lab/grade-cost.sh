@@ -57,19 +57,26 @@ stop_load() {
 trap 'stop_load; rm -rf "$work"' EXIT
 trap 'exit 1' HUP INT PIPE TERM
 
-# timed_grade DIR LOG - runs make grade in DIR; prints "SECONDS SCORE", the
-# processor seconds of everything it ran and the score of its GRADE line.
-timed_grade() {
-    sh -c 'cd "$1" && ${MAKE:-make} --no-print-directory grade >"$2" 2>&1; s=$?; times >"$2.times"; exit $s' \
-        sh "$1" "$2" </dev/null || :
+# cost_and_score LOG - "SECONDS SCORE": the processor seconds in LOG.times
+# (the output of the shell's `times` after a run) and the score of LOG's
+# GRADE line (none without one).
+cost_and_score() {
     # times: the shell's own times, then its children's, "user system".
     awk 'NR == 2 {
              t = 0
              for (i = 1; i <= 2; i++) { split($i, p, "m"); sub(/s$/, "", p[2]); t += 60 * p[1] + p[2] }
              printf "%.1f", t
-         }' "$2.times"
+         }' "$1.times"
     awk '/^GRADE / { for (i = 2; i <= NF; i++) if ($i ~ /^score=/) s = substr($i, 7) }
-         END { printf " %s\n", s == "" ? "none" : s }' "$2"
+         END { printf " %s\n", s == "" ? "none" : s }' "$1"
+}
+
+# timed_grade DIR LOG - runs make grade in DIR; prints "SECONDS SCORE", the
+# processor seconds of everything it ran and the score of its GRADE line.
+timed_grade() {
+    sh -c 'cd "$1" && ${MAKE:-make} --no-print-directory grade >"$2" 2>&1; s=$?; times >"$2.times"; exit $s' \
+        sh "$1" "$2" </dev/null || :
+    cost_and_score "$2"
 }
 
 # timed_submission STAGE SOLUTION LOG: the autograder of STAGE (autograder.sh)
@@ -88,13 +95,7 @@ timed_submission() {
     rm -rf "$ag/submission/stages/$1/build"
     sh -c 'AUTOGRADER_ROOT=$1 sh "$1/source/run_autograder" >"$2" 2>&1; s=$?; times >"$2.times"; exit $s' \
         sh "$ag" "$3" </dev/null || :
-    awk 'NR == 2 {
-             t = 0
-             for (i = 1; i <= 2; i++) { split($i, p, "m"); sub(/s$/, "", p[2]); t += 60 * p[1] + p[2] }
-             printf "%.1f", t
-         }' "$3.times"
-    awk '/^GRADE / { for (i = 2; i <= NF; i++) if ($i ~ /^score=/) s = substr($i, 7) }
-         END { printf " %s\n", s == "" ? "none" : s }' "$3"
+    cost_and_score "$3"
     rm -rf "$ag"
 }
 

@@ -89,15 +89,7 @@ failed=0
 # The handout may be grade.sh's temporary copy, gone when the grade is read:
 # its files are named as the student's handout names them.
 handout_paths() {
-    awk -v refs="$refs/" -v work="$work/" '
-        function replace(s, from, to,    i, out) {
-            out = ""
-            while ((i = index(s, from)) > 0) {
-                out = out substr(s, 1, i - 1) to
-                s = substr(s, i + length(from))
-            }
-            return out s
-        }
+    awk -v refs="$refs/" -v work="$work/" "$AWK_REPLACE"'
         { print replace(replace($0, refs, "tests/reference/"), work, "") }'
 }
 

@@ -18,6 +18,21 @@ usage_error() {
     exit 2
 }
 
+# An awk function for programs that rewrite paths: replace(s, from, to) is
+# s with every occurrence of the string from replaced by to, literally (no
+# regular expression: paths hold dots and more).  Prepend it to a program:
+# awk "$AWK_REPLACE"'{ print replace($0, a, b) }'.
+AWK_REPLACE='
+function replace(s, from, to,    i, out) {
+    out = ""
+    while ((i = index(s, from)) > 0) {
+        out = out substr(s, 1, i - 1) to
+        s = substr(s, i + length(from))
+    }
+    return out s
+}
+'
+
 # show_help SCRIPT - print the script's header comment (its help).
 show_help() {
     awk 'NR == 1 { next } /^#/ { sub(/^# ?/, ""); print; next } { exit }' "$1"
