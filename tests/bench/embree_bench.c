@@ -9,11 +9,11 @@
  * rays with its single-ray API, rtcIntersect1 and rtcOccluded1, on 1 and 2
  * threads, in ROUNDS interleaved rounds.  Prints both builds' times, both
  * throughputs, and ours as a fraction of Embree's: the median of the rounds
- * and its range.  Embree's BVH is a SAH-built 4- or 8-wide tree (8 where the
- * processor has AVX) traversed with SIMD, its triangles tested four at once
- * in float: production's speed, which stage 09 is measured against (stage
- * 05, STAGE=05_bvh, shows a median split's binary tree in double).  Built
- * only where Debian's libembree-dev is installed.
+ * and its range.  Embree's BVH is a SAH-built 4- or 8-wide tree traversed
+ * with SIMD, its triangles tested several at once in float: production's
+ * speed, which stage 09 is measured against (stage 05, STAGE=05_bvh, shows
+ * a median split's binary tree in double).  Built only where Debian's
+ * libembree-dev is installed.
  */
 #include <embree3/rtcore.h>
 #include <float.h>
@@ -141,7 +141,6 @@ embree_any(const void *ctx, ray r, real t_max, struct stats *st)
     return er.tfar < 0; /* Embree marks an occluded ray with tfar = -inf */
 }
 
-/* One kind of ray through both, on 1 and 2 threads. */
 /* The median of v[0, n) (n odd), and its least and greatest. */
 static void
 median_range(const double *v, int n, double *median, double *least, double *most)

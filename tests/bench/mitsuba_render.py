@@ -6,8 +6,8 @@
 Translates the statements the bench scenes use (camera with its near
 plane, image, material diffuse/mirror/glass, quad, sphere, area_light,
 point_light, sphere_light, triangle, mesh: a .glb's nodes with their
-transforms and materials, then the statement's own) into a Mitsuba scene as tests/reference/SCENES.md defines it
-(Mitsuba's `path` integrator, unbounded depth, Russian roulette from depth
+transforms and materials, then the statement's own) into a Mitsuba scene
+as tests/reference/SCENES.md defines it (Mitsuba's `path` integrator, unbounded depth, Russian roulette from depth
 5, the independent sampler, a box filter of one pixel, two-sided surfaces,
 one-sided black area lights), renders it once unmeasured (the LLVM variant
 compiles its kernels then) and once measured, writes the measured image as

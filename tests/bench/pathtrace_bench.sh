@@ -36,9 +36,8 @@
 # spp) and the stage's own (SELF_SPP, 1024 spp); each renderer is then
 # timed to its own converged image (so the time measures noise alone), and
 # the two converged images' mean brightness is compared: where they differ
-# by more than 2% (Mitsuba renders in float32; smallpt's walls are spheres
-# of radius 1e5), the line says so, and the times are not to the same
-# answer.  Without Mitsuba the stage's own reference serves alone.
+# by more than 2% (smallpt: tests/bench/README.md says why), the line says
+# so, and the times are not to the same answer.  Without Mitsuba the stage's own reference serves alone.
 # Last, cornell_diffuse_area is rendered by the stage at the spp predicted
 # for relMSE 1e-3 (rounded up to whole passes of 16), to check the
 # prediction.

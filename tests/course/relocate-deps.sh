@@ -9,14 +9,15 @@
 # header, and a header the submission changed (lab 08's lowdisc.h, which
 # the test programs include) recompiles nothing.  FROM is replaced where it
 # starts a path (FROM/), as typed and as its physical path (pwd -P), by TO's
-# physical path; the replacement is literal (lablib.sh's AWK_REPLACE).  Exit status: 0 done (also when there is no build), 1 error,
-# 2 usage.
+# physical path; the replacement is literal (lablib.sh's AWK_REPLACE).
+# Exit status: 0 done (also when there is no build), 1 error, 2 usage.
 set -eu
 PROG=relocate-deps.sh
 LAB_DIR=$(cd "$(dirname "$0")/../lab" && pwd) # the autograder's tools keep this layout
 . "$LAB_DIR/lablib.sh"
-[ $# -eq 2 ] || { echo "usage: relocate-deps.sh FROM TO" >&2; exit 2; }
-[ -d "$2" ] || { echo "relocate-deps.sh: no directory $2" >&2; exit 1; }
+case ${1:-} in -h | --help) show_help "$0"; exit 0 ;; esac
+[ $# -eq 2 ] || usage_error "usage: relocate-deps.sh FROM TO"
+[ -d "$2" ] || die "no directory $2"
 to=$(cd "$2" && pwd -P)
 from_physical=$(cd "$1" 2>/dev/null && pwd -P || echo "$1")
 [ -d "$to/build" ] || exit 0
