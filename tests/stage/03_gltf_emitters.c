@@ -179,18 +179,19 @@ TEST(emissive_square_lights_like_the_area_light)
     check_lamp_lights_like_the_area_light(1, shadow_samples(), NULL);
 }
 
-/* 100,352 emitting triangles (a glTF car's lamps have 88,837): each shadow
- * ray of a shading point goes to one of them, picked (light_picker.h), so a
+/* 18,432 emitting triangles (a glTF car's lamps have 88,837; 100,352 here
+ * cost 0.3 processor s more a grade and count the same): each shadow ray
+ * of a shading point goes to one of them, picked (light_picker.h), so a
  * vertex costs what one light costs whatever their number, and the floor
  * is lit as by the one rectangle they tile.  Before stage 05 every ray
- * tests every triangle (no BVH: a minute for this test), so stages 03-04
- * have 2,048 of them: the shadow rays' count is the picker's all the same.
+ * tests every triangle (no BVH), so stages 03-04 have 2,048 of them: the
+ * shadow rays' count is the picker's all the same.
  * 16 shadow rays a point (not 256): lab 05's untouched handout traverses
  * by brute force. */
 TEST(many_emitting_triangles_cost_what_one_light_costs)
 {
     const char *stats = NULL;
-    check_lamp_lights_like_the_area_light(atoi(STAGE_NAME) >= 5 ? 224 : 32, 16, &stats);
+    check_lamp_lights_like_the_area_light(atoi(STAGE_NAME) >= 5 ? 96 : 32, 16, &stats);
     if (!stats) {
         return;
     }
