@@ -36,7 +36,9 @@
 # grade's false alarms with their rate and Wilson 95% interval, the bound
 # on the rate that the first looks give ((Poisson 95% upper end of their
 # failures / sets)^2: a failure of the grade needs two independent ones),
-# the 2% square found, and the processor seconds.  The bug catalogue (tests/lab/bugs/: each bug fails a
+# the 2% square found, and the processor seconds; on standard error, each
+# TEST() that failed at its first seed and each that failed at both, by
+# set (which tests cost the bound).  The bug catalogue (tests/lab/bugs/: each bug fails a
 # test named for its function, so scores below 100%) is make test's part
 # `functions` (check-functions.sh), run last here with its count.
 # --sets N (default 100), --labs "03 07" (default: every lab), --quick:
@@ -45,7 +47,7 @@
 # outcome is the code's, the same every run; CI: about 140 processor
 # seconds), --write: the table between the markers of
 # docs/calibration/README.md.
-# Cost: about 31 processor seconds a set over the eight labs.
+# Cost: about 38 processor seconds a set over the nine labs.
 # Exit status: 0 measured, 1 a render, tool or program failed (or --quick's
 # check), 2 usage.
 set -eu
@@ -97,6 +99,8 @@ run_tests() {
         grep -Eq '^[0-9]+ passed, [0-9]+ failed' "$work/$1.log" || die "$rt_name crashed on $1 at set $2"
         test_statuses "$rt_src" "$work/$1.log" - >"$work/$1.statuses"
         rt_first=$((rt_first + $(grep -c ' FAIL$' "$work/$1.statuses" || :)))
+        awk -v s="$1 set $2: $rt_name/" '$2 == "FAIL" { print s $1 " failed at the first seed" }' \
+            "$work/$1.statuses" >&2
         for rt_test in $(second_seed "$rt_src" $((5000000 + 10000 * $2)) "$work/$1" run_stage_test "$1" "$rt_bin" \
             <"$work/$1.statuses" | awk '$2 == "FAIL" { print $1 }'); do
             rt_alarm=1

@@ -31,21 +31,23 @@ struct cull_ball {
 /* The ball around the box from lo to hi. */
 struct cull_ball cull_ball_around(vec3 lo, vec3 hi);
 
-/* A ray's line, in double, with its origin's squared distance from 0. */
+/* A ray's line, in double, with its origin's squared distance from 0 and
+ * its direction's inverse squared length. */
 struct cull_line {
-    double o[3], d[3], o2;
+    double o[3], d[3], o2, inv_d2;
 };
 
+/* The line through o along d (d not 0). */
 static inline struct cull_line
 cull_line_make(vec3 o, vec3 d)
 {
-    struct cull_line l = {{o.x, o.y, o.z}, {d.x, d.y, d.z}, 0};
+    struct cull_line l = {{o.x, o.y, o.z}, {d.x, d.y, d.z}, 0, 0};
     l.o2 = l.o[0] * l.o[0] + l.o[1] * l.o[1] + l.o[2] * l.o[2];
+    l.inv_d2 = 1 / (l.d[0] * l.d[0] + l.d[1] * l.d[1] + l.d[2] * l.d[2]);
     return l;
 }
 
-/* Whether line l (its direction unit) passes within ball b, with the
- * slack above. */
+/* Whether line l passes within ball b, with the slack above. */
 static inline bool
 cull_line_meets(const struct cull_ball *b, const struct cull_line *l)
 {
@@ -55,7 +57,7 @@ cull_line_meets(const struct cull_ball *b, const struct cull_line *l)
     double vz = b->center[2] - l->o[2];
     double v2 = vx * vx + vy * vy + vz * vz;
     double along = vx * l->d[0] + vy * l->d[1] + vz * l->d[2];
-    return v2 - along * along <= b->radius2 + slack * (v2 + l->o2 + b->center2);
+    return v2 - along * along * l->inv_d2 <= b->radius2 + slack * (v2 + l->o2 + b->center2);
 }
 
 #endif

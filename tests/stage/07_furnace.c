@@ -43,8 +43,13 @@
 #include "stattest.h"
 #include "testlib.h"
 
-/* The two t-tests of closed_sphere_interreflection. */
+/* The two t-tests of closed_sphere_interreflection, each at level
+ * PATHCHECK_ALPHA shared four ways (Sidak), not two: their t spreads 1.17
+ * wide, not 1 (docs/calibration: 100 renders; the pixels' standard error
+ * a little low), so a nominal level understates how often they fail
+ * correct work; a quarter of alpha keeps the pair near it. */
 #define N_STAT_TESTS 2
+#define N_SHARES 4
 
 #define PI_D 3.14159265358979323846
 
@@ -150,7 +155,7 @@ closed_sphere_scene(double albedo)
 TEST(closed_sphere_interreflection)
 {
     static const double albedos[] = {0.5, 0.8};
-    double level = stattest_sidak(PATHCHECK_ALPHA, N_STAT_TESTS);
+    double level = stattest_sidak(PATHCHECK_ALPHA, N_SHARES);
     bool has_sobol = atoi(STAGE_NAME) >= 8; /* 07 has the independent sampler only */
     for (int i = 0; i < N_STAT_TESTS; i++) {
         double a = albedos[i];
