@@ -29,6 +29,13 @@
 #           what a paired student's bias there looks like; found when
 #           paired says "biased" at both looks (the square in the
 #           solution's render of seed 1, then of seed 2)
+#   twins   a lab whose stage renders another lab's images bit for bit
+#           (lablib.sh's image_twin: 05 repeats 04, 09 repeats 08: a tree
+#           changes no picture), with the same programs and no paired page
+#           of its own, runs the same programs on the same images: its sets'
+#           outcomes are its twin's.  It runs its programs at every tenth set
+#           (every set with --quick) and stops the run unless each prints
+#           its twin's output there byte for byte, with the same outcomes.
 # A set's grade is a false alarm when a test or a page fails.  Prints one
 # Markdown row a lab: sets, the TEST()s that failed at their first seed (the
 # second seed's work: of these, those that failed again are the tests'
@@ -47,7 +54,7 @@
 # outcome is the code's, the same every run; CI: about 140 processor
 # seconds), --write: the table between the markers of
 # docs/calibration/README.md.
-# Cost: about 38 processor seconds a set over the nine labs.
+# Cost: about 28 processor seconds a set over the nine labs.
 # Exit status: 0 measured, 1 a render, tool or program failed (or --quick's
 # check), 2 usage.
 set -eu
@@ -64,7 +71,8 @@ write=0
 parse_options '--sets sets=VALUE --labs labs=VALUE --quick quick=1 --write write=1' "$@"
 shift "$po_used"
 [ $# -eq 0 ] || usage_error "unexpected argument: $1"
-[ "$quick" -eq 0 ] || sets=4
+twin_every=10
+[ "$quick" -eq 0 ] || { sets=4; twin_every=1; }
 case $sets in '' | 0 | *[!0-9]*) usage_error "--sets must be a positive whole number, got '$sets'" ;; esac
 [ -n "$labs" ] || labs=$(stage_list "$root" | cut -c1-2 | tr '\n' ' ')
 
@@ -85,10 +93,12 @@ run_stage_test() {
         >"$rs_log" 2>&1 </dev/null
 }
 
-# run_tests STAGE K OUT - the statistical programs of the lab's grade at
-# set K's first seed, a failing TEST() again at its second (lablib.sh,
-# second_seed, as the grade counts it); into OUT "1" when one fails at
-# both, else "0", and the number of TEST()s that failed at the first seed.
+# run_tests STAGE K OUT [KEEP] - the statistical programs of the lab's
+# grade at set K's first seed, a failing TEST() again at its second
+# (lablib.sh, second_seed, as the grade counts it); into OUT "1" when one
+# fails at both, else "0", and the number of TEST()s that failed at the
+# first seed; with KEEP, each program's output at the first seed into
+# KEEP.PROGRAM.log.
 run_tests() {
     rt_alarm=0
     rt_first=0
@@ -97,6 +107,7 @@ run_tests() {
         rt_bin=$root/build/tests/$1/$rt_name
         PATHCHECK_SEED=$((1000000 + 10000 * $2)) run_stage_test "$1" "$rt_bin" "$work/$1.log"
         grep -Eq '^[0-9]+ passed, [0-9]+ failed' "$work/$1.log" || die "$rt_name crashed on $1 at set $2"
+        [ $# -lt 4 ] || cp "$work/$1.log" "$4.$rt_name.log"
         test_statuses "$rt_src" "$work/$1.log" - >"$work/$1.statuses"
         rt_first=$((rt_first + $(grep -c ' FAIL$' "$work/$1.statuses" || :)))
         awk -v s="$1 set $2: $rt_name/" '$2 == "FAIL" { print s $1 " failed at the first seed" }' \
@@ -176,17 +187,32 @@ poisson_upper() {
         a = f + 1; print a * (1 - 1 / (9 * a) + 1.644854 / (3 * sqrt(a))) ^ 3 }'
 }
 
-# measure_lab NN - the sets of lab NN; its row into $work/NN.row.
+# select_programs NN STAGE - the statistical programs of lab NN's default
+# grade (those that take seeds, FULL=1-only ones left out) into
+# $work/STAGE.programs, built for STAGE.
+select_programs() {
+    for sp_src in $("$root/tests/harness/select-tests.sh" "$1" "$root"/tests/stage/*.c); do
+        is_statistical "$sp_src" && ! full_only "$sp_src" && echo "$sp_src"
+    done >"$work/$2.programs" || :
+    for sp_src in $(cat "$work/$2.programs"); do
+        plain_make -C "$root/tests" STAGE="$2" "$root/build/tests/$2/$(basename "$sp_src" .c)" \
+            >/dev/null 2>&1 || die "$(basename "$sp_src" .c) does not build for $2"
+    done
+}
+
+# is_check_set K - whether set K is one where a lab with an image twin runs
+# its own programs (every twin_every-th set, the first included).
+is_check_set() {
+    [ $((($1 - 1) % twin_every)) -eq 0 ]
+}
+
+# measure_lab NN - the sets of lab NN; its row into $work/NN.row, each
+# set's "K ALARM FIRST" (of its tests) into $work/NN.sets, and at the check
+# sets the programs' outputs into $work/NN.kK.PROGRAM.log (for a lab whose
+# image twin NN is: measure_twin).
 measure_lab() {
     ml_stage=$(resolve_stage "$root" "$1") || exit 2
-    # The programs of the lab's default grade that take seeds.
-    for ml_src in $("$root/tests/harness/select-tests.sh" "$1" "$root"/tests/stage/*.c); do
-        is_statistical "$ml_src" && ! full_only "$ml_src" && echo "$ml_src"
-    done >"$work/$ml_stage.programs" || :
-    for ml_src in $(cat "$work/$ml_stage.programs"); do
-        plain_make -C "$root/tests" STAGE="$ml_stage" "$root/build/tests/$ml_stage/$(basename "$ml_src" .c)" \
-            >/dev/null 2>&1 || die "$(basename "$ml_src" .c) does not build for $ml_stage"
-    done
+    select_programs "$1" "$ml_stage"
     for ml_scene in $(paired_scenes "$1"); do
         paired_render "$root/build/$ml_stage/render" "$1" "$root/scenes/$ml_scene.scene" "$PAIRED_SEED" \
             "$work/$ml_stage.$ml_scene.solution.pfm" -t 1 >/dev/null ||
@@ -198,6 +224,7 @@ measure_lab() {
         fi
     done
     : >"$work/$1.squares"
+    : >"$work/$1.sets"
     ml_tests=0
     ml_first=0
     ml_pages=0
@@ -205,10 +232,15 @@ measure_lab() {
     ml_grade=0
     ml_k=1
     while [ "$ml_k" -le "$sets" ]; do
-        run_tests "$ml_stage" "$ml_k" "$work/$1.t"
+        if is_check_set "$ml_k"; then
+            run_tests "$ml_stage" "$ml_k" "$work/$1.t" "$work/$1.k$ml_k"
+        else
+            run_tests "$ml_stage" "$ml_k" "$work/$1.t"
+        fi
         run_pages "$1" "$ml_stage" "$ml_k" "$work/$1.p" "$work/$1.squares"
         read -r ml_t ml_f <"$work/$1.t"
         read -r ml_p ml_pf <"$work/$1.p"
+        echo "$ml_k $ml_t $ml_f" >>"$work/$1.sets"
         ml_tests=$((ml_tests + ml_t))
         ml_first=$((ml_first + ml_f))
         ml_pages=$((ml_pages + ml_p))
@@ -216,45 +248,104 @@ measure_lab() {
         [ "$ml_t$ml_p" = 00 ] || ml_grade=$((ml_grade + 1))
         ml_k=$((ml_k + 1))
     done
-    ml_n=$(wc -l <"$work/$ml_stage.programs" | tr -d ' ')
-    ml_sq_n=$(wc -l <"$work/$1.squares" | tr -d ' ')
-    ml_sq_k=$(grep -c '^1$' "$work/$1.squares" || :)
-    set -- "$ml_stage" $(wilson "$ml_grade" "$sets")
-    if [ "$ml_sq_n" -gt 0 ]; then
-        ml_square=$(wilson "$ml_sq_k" "$ml_sq_n" | awk -v k="$ml_sq_k" -v n="$ml_sq_n" \
+    lab_row "$1" "$ml_stage" "$sets" "$ml_first" "$ml_tests" "$ml_pages_first" "$ml_pages" "$ml_grade"
+}
+
+# measure_twin NN TWIN - lab NN, whose stage renders lab TWIN's images bit
+# for bit (lablib.sh, image_twin), when TWIN was measured with the same
+# statistical programs and NN has no paired page: its sets' test outcomes
+# are TWIN's, the same programs on the same images.  What it runs is the
+# check: at every check set its programs, whose outputs (every statistic
+# they print) must be TWIN's byte for byte there, with the same outcomes.
+# Otherwise (other programs, or pages of its own) it is measured in full.
+measure_twin() {
+    mt_stage=$(resolve_stage "$root" "$1") || exit 2
+    mt_twin=$(resolve_stage "$root" "$2") || exit 2
+    select_programs "$1" "$mt_stage"
+    if [ -n "$(paired_scenes "$1")" ] ||
+        [ "$(sed 's|.*/||' "$work/$mt_stage.programs")" != "$(sed 's|.*/||' "$work/$mt_twin.programs")" ]; then
+        measure_lab "$1"
+        return
+    fi
+    : >"$work/$1.squares"
+    mt_k=1
+    mt_run=0
+    while [ "$mt_k" -le "$sets" ]; do
+        if is_check_set "$mt_k"; then
+            run_tests "$mt_stage" "$mt_k" "$work/$1.t" "$work/$1.k$mt_k"
+            for mt_src in $(cat "$work/$mt_stage.programs"); do
+                mt_name=$(basename "$mt_src" .c)
+                cmp -s "$work/$2.k$mt_k.$mt_name.log" "$work/$1.k$mt_k.$mt_name.log" ||
+                    die "$mt_name prints otherwise on $mt_stage than on $mt_twin at set $mt_k: their images differ"
+            done
+            [ "$mt_k $(cat "$work/$1.t")" = "$(sed -n "${mt_k}p" "$work/$2.sets")" ] ||
+                die "$mt_stage's tests end otherwise than $mt_twin's at set $mt_k"
+            mt_run=$((mt_run + 1))
+        fi
+        mt_k=$((mt_k + 1))
+    done
+    mt_alarms=$(awk '{ a += $2 } END { print a + 0 }' "$work/$2.sets")
+    mt_first=$(awk '{ f += $3 } END { print f + 0 }' "$work/$2.sets")
+    lab_row "$1" "$mt_stage" "$sets" "$mt_first" "$mt_alarms" 0 0 "$mt_alarms" \
+        "$sets, $mt_twin's ($mt_run checked)"
+}
+
+# lab_row NN STAGE SETS FIRST TESTS PAGES_FIRST PAGES GRADE [SETS_TEXT] -
+# lab NN's row into $work/STAGE.row: SETS sets, FIRST TEST()s failed at the
+# first seed and TESTS at both, PAGES_FIRST pages biased at the first look
+# and PAGES at both, GRADE sets whose grade failed; SETS_TEXT the sets cell
+# (default SETS).
+lab_row() {
+    lr_n=$(wc -l <"$work/$2.programs" | tr -d ' ')
+    lr_sq_n=$(wc -l <"$work/$1.squares" | tr -d ' ')
+    lr_sq_k=$(grep -c '^1$' "$work/$1.squares" || :)
+    if [ "$lr_sq_n" -gt 0 ]; then
+        lr_square=$(wilson "$lr_sq_k" "$lr_sq_n" | awk -v k="$lr_sq_k" -v n="$lr_sq_n" \
             '{ printf "%d of %d (%.1f%%, Wilson 95%% from %.1f%%)", k, n, 100 * $1, 100 * $2 }')
     else
-        ml_square="no paired page"
+        lr_square="no paired page"
     fi
     # The bound: a test or page fails the grade only by failing at two
     # independent seeds, q^2 for one whose first look fails at q, so the
     # grade's rate is at most sum q^2 <= (sum q)^2, and sum q, the first
     # looks' failures a set, is at most Poisson's 95% upper end of their
     # count over the sets.
-    ml_upper=$(poisson_upper $((ml_first + ml_pages_first)))
+    lr_upper=$(poisson_upper $(($4 + $6)))
     # A lab without random numbers (01-02) gives the same verdicts at every
     # seed: no false alarm on correct work is possible.
-    [ "$ml_n" -gt 0 ] || paired_second_look "${ml_stage%%_*}" || ml_upper=0
-    awk -v stage="$1" -v n="$sets" -v progs="$ml_n" -v f="$ml_first" -v t="$ml_tests" -v pf="$ml_pages_first" \
-        -v p="$ml_pages" -v g="$ml_grade" -v rate="$2" -v lo="$3" -v hi="$4" -v square="$ml_square" \
-        -v upper="$ml_upper" 'BEGIN {
+    [ "$lr_n" -gt 0 ] || paired_second_look "$1" || lr_upper=0
+    awk -v stage="$2" -v n="$3" -v cell="${9:-$3}" -v progs="$lr_n" -v f="$4" -v t="$5" -v pf="$6" \
+        -v p="$7" -v g="$8" -v square="$lr_square" -v upper="$lr_upper" -v w="$(wilson "$8" "$3")" 'BEGIN {
+        split(w, r, " ")
         b = (upper / n) ^ 2; if (b > 1) b = 1
-        printf "| %s | %d | %d | %d | %d | %d | %d | %d (%.1f%%, %.1f%%-%.1f%%) | %.2f%% | %s |",
-            stage, progs, n, f, t, pf, p, g, 100 * rate, 100 * lo, 100 * hi, 100 * b, square }' >"$work/$ml_stage.row"
+        printf "| %s | %d | %s | %d | %d | %d | %d | %d (%.1f%%, %.1f%%-%.1f%%) | %.2f%% | %s |",
+            stage, progs, cell, f, t, pf, p, g, 100 * r[1], 100 * r[2], 100 * r[3], 100 * b, square }' \
+        >"$work/$2.row"
 }
 
 plain_make -C "$root" all >"$work/build.log" 2>&1 || die "the project does not build: $(tail -n 5 "$work/build.log")"
 plain_make -C "$root/tests" tools >"$work/build.log" 2>&1 || die "the tools do not build"
 
-# The labs in two queues, one a processor; each lab's processor seconds
-# from times(1) of its own shell.
+# The labs in two queues, one a processor, the later labs (the costlier)
+# first, each into the queue with the smaller sum of lab numbers so far;
+# then the labs whose image twin was measured, side by side.  Each lab's
+# processor seconds from times(1) of its own shell.
 start=$(date +%s)
 queue0=
 queue1=
-i=0
-for nn in $labs; do
-    if [ $((i % 2)) -eq 0 ]; then queue0="$queue0 $nn"; else queue1="$queue1 $nn"; fi
-    i=$((i + 1))
+weight0=0
+weight1=0
+twins=
+for nn in $(echo "$labs" | tr ' ' '\n' | sort -r); do
+    if twin=$(image_twin "$nn") && echo " $labs " | grep -q " $twin "; then
+        twins="$twins $nn"
+    elif [ "$weight0" -le "$weight1" ]; then
+        queue0="$queue0 $nn"
+        weight0=$((weight0 + 1$nn - 100))
+    else
+        queue1="$queue1 $nn"
+        weight1=$((weight1 + 1$nn - 100))
+    fi
 done
 for q in 0 1; do
     eval "list=\$queue$q"
@@ -265,6 +356,16 @@ for q in 0 1; do
                 times >"$work/$nn.times"
             ) 2>>"$work/alarms" || { echo "lab $nn failed" >>"$work/failed"; }
         done
+    ) &
+done
+wait
+[ ! -f "$work/failed" ] || die "$(cat "$work/failed" "$work/alarms" | tail -n 5)"
+for nn in $twins; do
+    (
+        (
+            measure_twin "$nn" "$(image_twin "$nn")"
+            times >"$work/$nn.times"
+        ) 2>>"$work/alarms" || { echo "lab $nn failed" >>"$work/failed"; }
     ) &
 done
 wait

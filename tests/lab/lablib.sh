@@ -483,6 +483,21 @@ paired_second_look() {
     return 0
 }
 
+# image_twin NN - the lab whose stage renders lab NN's images bit for bit,
+# at every seed and with every option (status 1 when none): stage 05's tree
+# and stage 09's wider one change no picture, since the closest hit (ties
+# to the lowest primitive number) is one hit however a tree is built
+# (05_bvh holds every tree to brute force on the same rays, exactly).
+# make calibrate takes such a lab's statistical verdicts from its twin's
+# sets and checks the identity on a tenth of them (grades.sh).
+image_twin() {
+    case $1 in
+        05) echo 04 ;;
+        09) echo 08 ;;
+        *) return 1 ;;
+    esac
+}
+
 # paired_render RENDER NN SCENE_FILE SEED OUT [OPTION...] - RENDER's image
 # of SCENE_FILE as lab NN's paired page renders it (paired_options, 256 x
 # 256) at SEED, into OUT, with the OPTIONs (-t N); its output on standard
