@@ -128,7 +128,7 @@ bench: all
 
 # Every verdict of every lab's default grade: how often it fails correct
 # work, how often its paired pages find a 2% bias, the bug catalogue
-# (tests/calibrate/grades.sh; about 1 processor-hour, the table into
+# (tests/calibrate/grades.sh; about 0.75 processor-hours, the table into
 # docs/calibration/README.md).  QUICK=1: 4 sets a lab, a check (CI).
 calibrate: all
 	@tests/calibrate/grades.sh $(if $(filter 1,$(QUICK)),--quick,--write) $(if $(SETS),--sets $(SETS))
@@ -236,7 +236,7 @@ help:
 	'make gallery          scenes/README.md: every scene of the library, rendered (scenes/make-gallery.sh)' \
 	'make trade            speed against accuracy of every stage (docs/trade/; QUICK=1: short)' \
 	'make bench            BVH build and trace rates, against brute force and Embree' \
-	'make calibrate        every lab grade'\''s false alarms and detections, about 1 processor-hour (QUICK=1: CI'\''s check)' \
+	'make calibrate        every lab grade'\''s false alarms and detections, about 0.75 processor-hours (QUICK=1: CI'\''s check)' \
 	'make calibrate-compare  false-alarm and detection rates of compare'\''s verdicts (docs/calibration/; hours)' \
 	'make calibrate-functions  false-alarm rates of the labs'\'' statistical function tests (SEEDS=2000)' \
 	'make test-seeds       the statistical stage tests under SEEDS (20) other seeds: failure rates' \

@@ -51,7 +51,7 @@
 # --sets N (default 100), --labs "03 07" (default: every lab), --quick:
 # 4 sets and no bug catalogue, and a check: exit 1 when a set's grade
 # fails correct work or a square is missed (the seeds are fixed, so the
-# outcome is the code's, the same every run; CI: about 140 processor
+# outcome is the code's, the same every run; CI: about 145 processor
 # seconds), --write: the table between the markers of
 # docs/calibration/README.md.
 # Cost: about 28 processor seconds a set over the nine labs.
