@@ -97,8 +97,8 @@ run_stage_test() {
 # grade at set K's first seed, a failing TEST() again at its second
 # (lablib.sh, second_seed, as the grade counts it); into OUT "1" when one
 # fails at both, else "0", and the number of TEST()s that failed at the
-# first seed; with KEEP, each program's output at the first seed into
-# KEEP.PROGRAM.log.
+# first seed; with KEEP (not empty), each program's output at the first
+# seed into KEEP.PROGRAM.log.
 run_tests() {
     rt_alarm=0
     rt_first=0
@@ -107,7 +107,7 @@ run_tests() {
         rt_bin=$root/build/tests/$1/$rt_name
         PATHCHECK_SEED=$((1000000 + 10000 * $2)) run_stage_test "$1" "$rt_bin" "$work/$1.log"
         grep -Eq '^[0-9]+ passed, [0-9]+ failed' "$work/$1.log" || die "$rt_name crashed on $1 at set $2"
-        [ $# -lt 4 ] || cp "$work/$1.log" "$4.$rt_name.log"
+        [ -z "${4:-}" ] || cp "$work/$1.log" "$4.$rt_name.log"
         test_statuses "$rt_src" "$work/$1.log" - >"$work/$1.statuses"
         rt_first=$((rt_first + $(grep -c ' FAIL$' "$work/$1.statuses" || :)))
         awk -v s="$1 set $2: $rt_name/" '$2 == "FAIL" { print s $1 " failed at the first seed" }' \
@@ -232,11 +232,9 @@ measure_lab() {
     ml_grade=0
     ml_k=1
     while [ "$ml_k" -le "$sets" ]; do
-        if is_check_set "$ml_k"; then
-            run_tests "$ml_stage" "$ml_k" "$work/$1.t" "$work/$1.k$ml_k"
-        else
-            run_tests "$ml_stage" "$ml_k" "$work/$1.t"
-        fi
+        ml_keep=
+        ! is_check_set "$ml_k" || ml_keep=$work/$1.k$ml_k
+        run_tests "$ml_stage" "$ml_k" "$work/$1.t" "$ml_keep"
         run_pages "$1" "$ml_stage" "$ml_k" "$work/$1.p" "$work/$1.squares"
         read -r ml_t ml_f <"$work/$1.t"
         read -r ml_p ml_pf <"$work/$1.p"
