@@ -25,7 +25,8 @@
 #                   CHECK_LABS_FLAGS=--no-earlier: all but the earlier stages' tests)
 #   make clean
 #   make help       one line per target
-# Knobs: REAL=float (single precision, build/float/), CFLAGS=..., WERROR=1,
+# Knobs: REAL=float (single precision, build/float/), NATIVE=1 (for this
+# processor, build/native/), CFLAGS=..., WERROR=1,
 # OPENEXR=0|1, TINYGLTF=0|1.  See common/config.mk.
 override ROOT := $(abspath .)
 include common/config.mk
@@ -257,6 +258,7 @@ help:
 	'make help             this list' \
 	'' \
 	'Knobs, with any target: REAL=float (single precision, in build/float/: make REAL=float test),' \
+	'NATIVE=1 (built for this processor: -march=native, in build/native/),' \
 	'WERROR=1 (warnings are errors), OPENEXR=0|1, TINYGLTF=0|1, CFLAGS=... (common/config.mk)'
 
 .PHONY: all models common tools test sanitize fuzz config web demo gallery trade bench calibrate calibrate-compare calibrate-functions test-seeds unseen docs-images clean lab grade autograder grade-class farm-render diffs image-hashes branches check-labs grade-cost reference-masks help $(STAGES)

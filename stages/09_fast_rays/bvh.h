@@ -32,7 +32,9 @@ struct bvh_node {
 
 /* 128 bytes, two cache lines: four children's boxes, by axis then child, so that one vector holds
  * an axis's four lower (or upper) bounds. */
-#ifndef BVH_WIDTH
+#if !defined BVH_WIDTH && defined __AVX2__ /* 8 floats a register (NATIVE=1 on most x86-64) */
+#define BVH_WIDTH 8
+#elif !defined BVH_WIDTH
 #define BVH_WIDTH 4 /* children a node: 4 or 8 */
 #endif
 struct bvh_wide {

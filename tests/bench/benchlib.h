@@ -23,6 +23,15 @@
 #define BENCH_HEIGHT 600
 #define BENCH_RUNS 5 /* each timing is the best of this many runs */
 
+/* The vector instructions the build may use (make NATIVE=1: the processor's). */
+#if defined __AVX2__
+#define BENCH_ISA "AVX2"
+#elif defined __AVX__
+#define BENCH_ISA "AVX"
+#else
+#define BENCH_ISA "the baseline vectors (SSE2 on x86-64, NEON on arm64)"
+#endif
+
 /* A model and what is traced through it.  It points into itself (world at
  * scene): never copy one. */
 struct bench_model {

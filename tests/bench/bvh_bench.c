@@ -164,10 +164,11 @@ main(int argc, char **argv)
     const char *big = argc > 1 ? argv[1] : BENCH_BIG_MODEL;
     const char *small = argc > 2 ? argv[2] : BENCH_SMALL_MODEL;
     printf(
-        "BVH benchmark of %s: %s precision, BVH_MAX_LEAF %d, %dx%d camera rays, 1 point light, "
-        "best of %d runs\n",
+        "BVH benchmark of %s: %s precision, built for %s, BVH_MAX_LEAF %d, %dx%d camera rays, "
+        "1 point light, best of %d runs\n",
         STAGE_NAME,
         REAL_NAME,
+        BENCH_ISA,
         BVH_MAX_LEAF,
         BENCH_WIDTH,
         BENCH_HEIGHT,

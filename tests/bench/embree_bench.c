@@ -256,11 +256,12 @@ main(int argc, char **argv)
     const char *big = argc > 1 ? argv[1] : BENCH_BIG_MODEL;
     const char *small = argc > 2 ? argv[2] : BENCH_SMALL_MODEL;
     printf(
-        "Embree 3 against %s's BVH: same models and rays, %s precision for ours, "
+        "Embree 3 against %s's BVH: same models and rays, %s precision for ours (built for %s), "
         "float for Embree.\nMrays/s: the median of %d interleaved rounds, each the best of %d "
         "runs; ours/E: the median of the rounds' ratios (their range)\n",
         STAGE_NAME,
         REAL_NAME,
+        BENCH_ISA,
         ROUNDS,
         BENCH_RUNS);
     struct diag err;

@@ -257,8 +257,9 @@ agrees(const struct world *tree, const struct world *brute, ray r, real t_max)
            && (!hit_got || (got.prim == want.prim && got.t == want.t));
 }
 
-/* Eight triangles in one plane, in four pairs near the corners of a square
- * of side 2 around `at`: one node, four flat leaves of two. */
+/* 2 BVH_WIDTH triangles in one plane, in BVH_WIDTH pairs near the corners
+ * of a square of side 2 around `at` (and, for eight children, of the square
+ * 4 to its right): one node, BVH_WIDTH flat leaves of two. */
 static bool
 four_leaves(vec3 at, struct scene *s)
 {
@@ -268,9 +269,10 @@ four_leaves(vec3 at, struct scene *s)
         sizeof text,
         "camera origin 0 0 5 target 0 0 0 up 0 1 0 fov 40\nimage width 4 height 4\n"
         "material m diffuse albedo 0.5 0.5 0.5\n");
-    for (int i = 0; i < 8; i++) {
-        double x = (double)at.x + (i & 1 ? 1 : -1) + 0.05 * (i >> 2);
-        double y = (double)at.y + (i & 2 ? 1 : -1);
+    for (int i = 0; i < 2 * BVH_WIDTH; i++) {
+        int corner = i % BVH_WIDTH;
+        double x = (double)at.x + (corner & 1 ? 1 : -1) + 4 * (corner >> 2) + 0.05 * (i / BVH_WIDTH);
+        double y = (double)at.y + (corner & 2 ? 1 : -1);
         double z = (double)at.z; /* one plane: the leaves' boxes are flat */
         n += snprintf(
             text + n,
@@ -303,8 +305,9 @@ TEST(meet_boxes_keeps_every_hit)
         CHECK(bvh_build(&tree.bvh, &tree, &err));
         if (tree.bvh.n_wide != 1 || tree.bvh.wide[0].leaves != (1u << BVH_WIDTH) - 1) {
             CHECK_FAIL(
-                "the build did not put eight triangles in one node of %d leaves (%d nodes): "
+                "the build did not put %d triangles in one node of %d leaves (%d nodes): "
                 "check gather_children and sah_split first",
+                2 * BVH_WIDTH,
                 BVH_WIDTH,
                 tree.bvh.n_wide);
             bvh_free(&tree.bvh);

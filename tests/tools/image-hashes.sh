@@ -9,10 +9,13 @@
 # Each render: -W WIDTH (default 16), -s 1, -t 2 (a stage's image does not
 # depend on its thread count), the stage's defaults otherwise, PFM.
 #
-#   image-hashes.sh [--width N] [--stages "01 05"] [--out FILE] [--compare FILE]
+#   image-hashes.sh [--width N] [--stages "01 05"] [--build DIR] [--out FILE] [--compare FILE]
 #   image-hashes.sh --self-test
 #
 # --stages LIST   only these stages (default: every one)
+# --build DIR     the build whose renders to hash, under the project (default
+#                 build; build/native for make NATIVE=1, whose images must
+#                 be the plain build's: CI compares the two)
 # --out FILE      write the lines to FILE (default: standard output)
 # --compare FILE  compare with FILE, an earlier run's lines: print each
 #                 line that differs, exit 1 when one does
@@ -23,6 +26,7 @@
 set -eu
 root=$(cd "$(dirname "$0")/../.." && pwd)
 width=16
+build=build
 out=
 compare=
 stages=
@@ -33,6 +37,7 @@ while [ $# -gt 0 ]; do
         --out) out=${2:?--out needs a file}; shift 2 ;;
         --compare) compare=${2:?--compare needs a file}; shift 2 ;;
         --stages) stages=${2:?--stages needs a list}; shift 2 ;;
+        --build) build=${2:?--build needs a directory}; shift 2 ;;
         --self-test) self_test=1; shift ;;
         -h | --help) sed -n '2,/^set -eu/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
         *) echo "image-hashes.sh: unexpected argument: $1" >&2; exit 2 ;;
@@ -79,7 +84,7 @@ for dir in "$root"/stages/[0-9][0-9]_*; do
     if [ -n "$stages" ]; then
         case " $stages " in *" ${stage%%_*} "* | *" $stage "*) ;; *) continue ;; esac
     fi
-    bin=$root/build/$stage/render
+    bin=$root/$build/$stage/render
     [ -x "$bin" ] || { echo "image-hashes.sh: $bin: not built (make)" >&2; exit 1; }
     for scene in "$root"/scenes/*.scene "$root"/scenes/*.gltf; do
         [ -f "$scene" ] || continue
