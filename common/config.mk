@@ -83,8 +83,9 @@ endif
 # build/native/): -march=native lets the compiler use every vector
 # instruction it has (AVX2 on most x86-64 processors since 2013, as Embree
 # picks at run time); the results are the same bit for bit, since
-# contraction stays off and no other floating-point rule changes.  Stage 09 then takes eight children a node where AVX2 holds
-# eight floats a register (bvh.h).
+# contraction stays off and no other floating-point rule changes.  Stage 09
+# then takes eight children a node where AVX2 holds eight floats a
+# register (bvh.h).
 NATIVE ?= 0
 ARCH_FLAGS := -ffp-contract=off
 ifeq ($(NATIVE),1)

@@ -29,7 +29,7 @@
 #elif defined __AVX__
 #define BENCH_ISA "AVX"
 #else
-#define BENCH_ISA "the baseline vectors (SSE2 on x86-64, NEON on arm64)"
+#define BENCH_ISA "128-bit vectors (SSE2 on x86-64, NEON on arm64)"
 #endif
 
 /* A model and what is traced through it.  It points into itself (world at

@@ -266,21 +266,17 @@ measure_twin() {
         return
     fi
     : >"$work/$1.squares"
-    mt_k=1
     mt_run=0
-    while [ "$mt_k" -le "$sets" ]; do
-        if is_check_set "$mt_k"; then
-            run_tests "$mt_stage" "$mt_k" "$work/$1.t" "$work/$1.k$mt_k"
-            for mt_src in $(cat "$work/$mt_stage.programs"); do
-                mt_name=$(basename "$mt_src" .c)
-                cmp -s "$work/$2.k$mt_k.$mt_name.log" "$work/$1.k$mt_k.$mt_name.log" ||
-                    die "$mt_name prints otherwise on $mt_stage than on $mt_twin at set $mt_k: their images differ"
-            done
-            [ "$mt_k $(cat "$work/$1.t")" = "$(sed -n "${mt_k}p" "$work/$2.sets")" ] ||
-                die "$mt_stage's tests end otherwise than $mt_twin's at set $mt_k"
-            mt_run=$((mt_run + 1))
-        fi
-        mt_k=$((mt_k + 1))
+    for mt_k in $(seq 1 "$twin_every" "$sets"); do # the check sets (is_check_set)
+        run_tests "$mt_stage" "$mt_k" "$work/$1.t" "$work/$1.k$mt_k"
+        for mt_src in $(cat "$work/$mt_stage.programs"); do
+            mt_name=$(basename "$mt_src" .c)
+            cmp -s "$work/$2.k$mt_k.$mt_name.log" "$work/$1.k$mt_k.$mt_name.log" ||
+                die "$mt_name prints otherwise on $mt_stage than on $mt_twin at set $mt_k: their images differ"
+        done
+        [ "$mt_k $(cat "$work/$1.t")" = "$(sed -n "${mt_k}p" "$work/$2.sets")" ] ||
+            die "$mt_stage's tests end otherwise than $mt_twin's at set $mt_k"
+        mt_run=$((mt_run + 1))
     done
     mt_alarms=$(awk '{ a += $2 } END { print a + 0 }' "$work/$2.sets")
     mt_first=$(awk '{ f += $3 } END { print f + 0 }' "$work/$2.sets")

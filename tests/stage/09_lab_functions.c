@@ -261,7 +261,7 @@ agrees(const struct world *tree, const struct world *brute, ray r, real t_max)
  * of a square of side 2 around `at` (and, for eight children, of the square
  * 4 to its right): one node, BVH_WIDTH flat leaves of two. */
 static bool
-four_leaves(vec3 at, struct scene *s)
+one_node_of_leaves(vec3 at, struct scene *s)
 {
     char text[4096];
     int n = snprintf(
@@ -298,7 +298,7 @@ TEST(meet_boxes_keeps_every_hit)
     for (int k = 0; k < 3 && !check_current.failed_checks; k++) {
         vec3 at = vec3_splat((real)offsets[k]);
         struct scene s;
-        CHECK(four_leaves(at, &s));
+        CHECK(one_node_of_leaves(at, &s));
         struct world brute = world_make(&s);
         struct world tree = brute;
         struct diag err;
